@@ -76,9 +76,9 @@ vec2 unitpack_octangle48_sincos_pi(float x) {
 }
 
 // unitpack_octangle48_decode: decoder.
-// In: the packed code, vec2<u32>: word 0 holds the normal's octahedral x (bits 0–15) and y (bits
-//   16–31), snorm16 (two's complement); word 1 the tangent's angle from b1 towards b2, code a at
-//   a·2π/32768 (bits 0–14) and the sign (bit 15, set where reflected); b1 = (n.y, -n.x, 0) where
+// In: the packed code, two 32-bit words: word 0 holds the normal's octahedral x (bits 0–15) and y
+//   (bits 16–31), snorm16 (two's complement); word 1 the tangent's angle from b1 towards b2, code a
+//   at a·2π/32768 (bits 0–14) and the sign (bit 15, set where reflected); b1 = (n.y, -n.x, 0) where
 //   |n.y| > |n.z| on the code's octahedral point, else (n.z, 0, -n.x), and b2 = n × b1, of the
 //   decoded normal n.
 // Out: the frame: n, and t with the bitangent's sign (±1) in t.w; n the octahedral point
@@ -188,9 +188,9 @@ unitpack_octangle48_tbn unitpack_octangle48_decode_tbn(uvec2 code) {
 //   below 2^-13 of its largest component (zero, NaN, infinite, parallel to the normal) encodes as
 //   b1, the basis's first axis (+X for the normal +Z); w < 0 is reflected, any other w (0, NaN) is
 //   not.
-// Out: the packed code, vec2<u32>: word 0 holds the normal's octahedral x (bits 0–15) and y (bits
-//   16–31), snorm16 (two's complement); word 1 the tangent's angle from b1 towards b2, code a at
-//   a·2π/32768 (bits 0–14) and the sign (bit 15, set where reflected); b1 = (n.y, -n.x, 0) where
+// Out: the packed code, two 32-bit words: word 0 holds the normal's octahedral x (bits 0–15) and y
+//   (bits 16–31), snorm16 (two's complement); word 1 the tangent's angle from b1 towards b2, code a
+//   at a·2π/32768 (bits 0–14) and the sign (bit 15, set where reflected); b1 = (n.y, -n.x, 0) where
 //   |n.y| > |n.z| on the code's octahedral point, else (n.z, 0, -n.x), and b2 = n × b1, of the
 //   decoded normal n.
 // Portable (as the header says): the same code on every such implementation; denormal input

@@ -71,10 +71,10 @@ float2 unitpack_octangle32_sincos_pi(float x) {
 }
 
 // unitpack_octangle32_decode: decoder.
-// In: the packed code, u32: the normal's octahedral x (bits 0–10) and y (bits 11–21), snorm11
-//   (two's complement); the tangent's angle from b1 towards b2, code a at a·2π/512 (bits 22–30);
-//   the sign (bit 31, set where reflected); b1 = (n.y, -n.x, 0) where |n.y| > |n.z| on the code's
-//   octahedral point, else (n.z, 0, -n.x), and b2 = n × b1, of the decoded normal n.
+// In: the packed code, one 32-bit word: the normal's octahedral x (bits 0–10) and y (bits 11–21),
+//   snorm11 (two's complement); the tangent's angle from b1 towards b2, code a at a·2π/512 (bits
+//   22–30); the sign (bit 31, set where reflected); b1 = (n.y, -n.x, 0) where |n.y| > |n.z| on the
+//   code's octahedral point, else (n.z, 0, -n.x), and b2 = n × b1, of the decoded normal n.
 // Out: the frame: n, and t with the bitangent's sign (±1) in t.w; n the octahedral point
 //   normalized, t its stored direction in the plane normalized: each unit, and orthogonal to each
 //   other, within 4·10^-6.
@@ -184,10 +184,10 @@ unitpack_octangle32_tbn unitpack_octangle32_decode_tbn(uint code) {
 //   below 2^-13 of its largest component (zero, NaN, infinite, parallel to the normal) encodes as
 //   b1, the basis's first axis (+X for the normal +Z); w < 0 is reflected, any other w (0, NaN) is
 //   not.
-// Out: the packed code, u32: the normal's octahedral x (bits 0–10) and y (bits 11–21), snorm11
-//   (two's complement); the tangent's angle from b1 towards b2, code a at a·2π/512 (bits 22–30);
-//   the sign (bit 31, set where reflected); b1 = (n.y, -n.x, 0) where |n.y| > |n.z| on the code's
-//   octahedral point, else (n.z, 0, -n.x), and b2 = n × b1, of the decoded normal n.
+// Out: the packed code, one 32-bit word: the normal's octahedral x (bits 0–10) and y (bits 11–21),
+//   snorm11 (two's complement); the tangent's angle from b1 towards b2, code a at a·2π/512 (bits
+//   22–30); the sign (bit 31, set where reflected); b1 = (n.y, -n.x, 0) where |n.y| > |n.z| on the
+//   code's octahedral point, else (n.z, 0, -n.x), and b2 = n × b1, of the decoded normal n.
 // Portable (as the header says): the same code on every such implementation; denormal input
 //   components count as zero.
 uint unitpack_octangle32_encode(float3 n, float4 t) {

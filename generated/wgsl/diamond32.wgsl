@@ -33,11 +33,11 @@ struct unitpack_diamond32_tbn {
 }
 
 // unitpack_diamond32_decode: decoder.
-// In: the packed code, u32: the normal's octahedral x (bits 0–10) and y (bits 11–21), snorm11
-//   (two's complement); the tangent's diamond code, 508 around the circle: with x = t·b1 / (|t·b1|
-//   + |t·b2|), 3·127 - round(127·x) where t·b2 ≥ 0, else 127 + round(127·x) (bits 22–30); the sign
-//   (bit 31, set where reflected); b1 = (n.y, -n.x, 0) where |n.y| > |n.z| on the code's octahedral
-//   point, else (n.z, 0, -n.x), and b2 = n × b1, of the decoded normal n.
+// In: the packed code, one 32-bit word: the normal's octahedral x (bits 0–10) and y (bits 11–21),
+//   snorm11 (two's complement); the tangent's diamond code, 508 around the circle: with x = t·b1 /
+//   (|t·b1| + |t·b2|), 3·127 - round(127·x) where t·b2 ≥ 0, else 127 + round(127·x) (bits 22–30);
+//   the sign (bit 31, set where reflected); b1 = (n.y, -n.x, 0) where |n.y| > |n.z| on the code's
+//   octahedral point, else (n.z, 0, -n.x), and b2 = n × b1, of the decoded normal n.
 // Out: the frame: n, and t with the bitangent's sign (±1) in t.w; n the octahedral point
 //   normalized, t its stored direction in the plane normalized: each unit, and orthogonal to each
 //   other, within 4·10^-6.
@@ -146,11 +146,11 @@ fn unitpack_diamond32_decode_tbn(code: u32) -> unitpack_diamond32_tbn {
 //   below 2^-13 of its largest component (zero, NaN, infinite, parallel to the normal) encodes as
 //   b1, the basis's first axis (+X for the normal +Z); w < 0 is reflected, any other w (0, NaN) is
 //   not.
-// Out: the packed code, u32: the normal's octahedral x (bits 0–10) and y (bits 11–21), snorm11
-//   (two's complement); the tangent's diamond code, 508 around the circle: with x = t·b1 / (|t·b1|
-//   + |t·b2|), 3·127 - round(127·x) where t·b2 ≥ 0, else 127 + round(127·x) (bits 22–30); the sign
-//   (bit 31, set where reflected); b1 = (n.y, -n.x, 0) where |n.y| > |n.z| on the code's octahedral
-//   point, else (n.z, 0, -n.x), and b2 = n × b1, of the decoded normal n.
+// Out: the packed code, one 32-bit word: the normal's octahedral x (bits 0–10) and y (bits 11–21),
+//   snorm11 (two's complement); the tangent's diamond code, 508 around the circle: with x = t·b1 /
+//   (|t·b1| + |t·b2|), 3·127 - round(127·x) where t·b2 ≥ 0, else 127 + round(127·x) (bits 22–30);
+//   the sign (bit 31, set where reflected); b1 = (n.y, -n.x, 0) where |n.y| > |n.z| on the code's
+//   octahedral point, else (n.z, 0, -n.x), and b2 = n × b1, of the decoded normal n.
 // Portable (as the header says): the same code on every such implementation; denormal input
 //   components count as zero.
 fn unitpack_diamond32_encode(n: vec3<f32>, t: vec4<f32>) -> u32 {

@@ -95,9 +95,9 @@ fn unitpack_godot_axis_angle_decode_float(f: vec3<f32>) -> unitpack_godot_axis_a
 }
 
 // unitpack_godot_axis_angle_decode: decoder.
-// In: the packed code, vec2<u32>: word 0 holds the axis's octahedral x (bits 0–15) and y (bits
-//   16–31) as Godot's normal attribute stores them, word 1 the angle (bits 0–15) as Godot stores it
-//   in the position's w; unorm16 each.
+// In: the packed code, two 32-bit words: word 0 holds the axis's octahedral x (bits 0–15) and y
+//   (bits 16–31) as Godot's normal attribute stores them, word 1 the angle (bits 0–15) as Godot
+//   stores it in the position's w; unorm16 each.
 // Out: the frame: n, and t with the bitangent's sign (±1) in t.w; Godot's oct_to_vec3 and
 //   axis_angle_to_tbn, the angle's sine and cosine from the model's polynomial: each component
 //   within 2^-20 of that decode evaluated exactly on every sampled code; n and t unit and
@@ -352,9 +352,10 @@ fn unitpack_godot_axis_angle_encode_float(n: vec3<f32>, t: vec4<f32>) -> vec3<f3
 
 // unitpack_godot_axis_angle_encode: fast encoder.
 // In: as for encode_float.
-// Out: the packed code, vec2<u32>: word 0 holds the axis's octahedral x (bits 0–15) and y (bits
-//   16–31) as Godot's normal attribute stores them, word 1 the angle (bits 0–15) as Godot stores it
-//   in the position's w; unorm16 each; each field (uint16_t)CLAMP(x·65535, 0, 65535), truncated.
+// Out: the packed code, two 32-bit words: word 0 holds the axis's octahedral x (bits 0–15) and y
+//   (bits 16–31) as Godot's normal attribute stores them, word 1 the angle (bits 0–15) as Godot
+//   stores it in the position's w; unorm16 each; each field (uint16_t)CLAMP(x·65535, 0, 65535),
+//   truncated.
 // The lean tier (guarantee=ieee), not portable: bit-exact only where + - * / and sqrt round
 //   correctly to nearest, denormals are kept and nothing is contracted or reassociated (lavapipe, C
 //   with -ffp-contract=off and without fast math, the CPU); elsewhere it may return a neighbouring

@@ -57,8 +57,8 @@ fn unitpack_qtangent64_decode_float(q: vec4<f32>) -> unitpack_qtangent64_frame {
 }
 
 // unitpack_qtangent64_decode: decoder.
-// In: the packed code, vec2<u32>: word 0 holds x (bits 0–15) and y (bits 16–31), word 1 z and w,
-//   each snorm16 (two's complement): Filament's SHORT4 as stored.
+// In: the packed code, two 32-bit words: word 0 holds x (bits 0–15) and y (bits 16–31), word 1 z
+//   and w, each snorm16 (two's complement): Filament's SHORT4 as stored.
 // Out: the frame: n, and t with the bitangent's sign (±1) in t.w; Filament's toTangentFrame on the
 //   fetched quaternion, not renormalized: n and t are unit and orthogonal to the quaternion's
 //   quantization (a few 2^-15).
@@ -188,9 +188,9 @@ fn unitpack_qtangent64_encode_float(n: vec3<f32>, t: vec4<f32>) -> vec4<f32> {
 
 // unitpack_qtangent64_encode: fast encoder.
 // In: as for encode_float.
-// Out: the packed code, vec2<u32>: word 0 holds x (bits 0–15) and y (bits 16–31), word 1 z and w,
-//   each snorm16 (two's complement): Filament's SHORT4 as stored; packSnorm16 of the quaternion,
-//   round(clamp(q, -1, 1)·32767) with halves away from zero.
+// Out: the packed code, two 32-bit words: word 0 holds x (bits 0–15) and y (bits 16–31), word 1 z
+//   and w, each snorm16 (two's complement): Filament's SHORT4 as stored; packSnorm16 of the
+//   quaternion, round(clamp(q, -1, 1)·32767) with halves away from zero.
 // The lean tier (guarantee=ieee), not portable: bit-exact only where + - * / and sqrt round
 //   correctly to nearest, denormals are kept and nothing is contracted or reassociated (lavapipe, C
 //   with -ffp-contract=off and without fast math, the CPU); elsewhere it may return a neighbouring

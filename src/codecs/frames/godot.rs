@@ -91,7 +91,7 @@ impl Family for GodotAxisAngle {
             TBN_DECODER => tbn_doc(),
             "decode_float" => vec!["In: the axis's octahedral x and y and the angle, each in [0, 1], as unorm16 fetches of the code return them.".into()],
             "decode" => vec![
-                format!("In: the packed code, vec2<u32>: {CODE}."),
+                format!("In: the packed code, two 32-bit words: {CODE}."),
                 format!("Out: the frame: n, and t with the bitangent's sign (±1) in t.w; {}.", self.info.decode_note),
             ],
             "encode_float" => vec![
@@ -100,7 +100,7 @@ impl Family for GodotAxisAngle {
             ],
             _ => vec![
                 "In: as for encode_float.".into(),
-                format!("Out: the packed code, vec2<u32>: {CODE}; each field (uint16_t)CLAMP(x·65535, 0, 65535), truncated."),
+                format!("Out: the packed code, two 32-bit words: {CODE}; each field (uint16_t)CLAMP(x·65535, 0, 65535), truncated."),
             ],
         })
     }

@@ -94,7 +94,7 @@ impl Family for QTangent {
             TBN_DECODER => tbn_doc(),
             "decode_float" => vec!["In: the quaternion (x, y, z, w) in [-1, 1], as a snorm16 fetch of the code returns it.".into()],
             "decode" => vec![
-                format!("In: the packed code, vec2<u32>: {CODE}."),
+                format!("In: the packed code, two 32-bit words: {CODE}."),
                 format!("Out: the frame: n, and t with the bitangent's sign (±1) in t.w; {}.", self.info.decode_note),
             ],
             "encode_float" => vec![
@@ -103,7 +103,7 @@ impl Family for QTangent {
             ],
             _ => vec![
                 "In: as for encode_float.".into(),
-                format!("Out: the packed code, vec2<u32>: {CODE}; packSnorm16 of the quaternion, round(clamp(q, -1, 1)·32767) with halves away from zero."),
+                format!("Out: the packed code, two 32-bit words: {CODE}; packSnorm16 of the quaternion, round(clamp(q, -1, 1)·32767) with halves away from zero."),
             ],
         })
     }

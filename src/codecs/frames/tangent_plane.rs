@@ -321,7 +321,11 @@ impl Family for TangentPlane {
                 format!("the tangent's diamond code, {} around the circle: with x = t·b1 / (|t·b1| + |t·b2|), 3·{m} - round({m}·x) where t·b2 ≥ 0, else {m} + round({m}·x)", 4.0 * m)
             }
         };
-        let ty = if spec.bits() == 32 { "u32" } else { "vec2<u32>" };
+        let ty = if spec.bits() == 32 {
+            "one 32-bit word"
+        } else {
+            "two 32-bit words"
+        };
         let layout = if spec.bits() == 32 {
             format!("the normal's octahedral x (bits 0–{}) and y (bits {}–{}), snorm{b} (two's complement); {turn} (bits {}–30); the sign (bit 31, set where reflected)", b - 1, b, 2 * b - 1, 2 * b)
         } else {
