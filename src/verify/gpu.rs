@@ -26,8 +26,8 @@
 //! the pipeline of one function: with the pipeline constant set (naga paths) or, since
 //! passthrough SPIR-V takes no specialization info, with the selector made a plain
 //! constant in a copy of the words. Either way the driver sees a constant and compiles
-//! that function's case alone; a selector read at run time would have a CPU driver run every case under
-//! masks. (`crate::emit::lang::Backend::kernel` writes these kernels; `tests/gpu_smoke.rs`
+//! that function's case alone; a selector read at run time would have a CPU driver run
+//! every case under masks. (`crate::emit::lang::Backend::kernel` writes these kernels; `tests/gpu_smoke.rs`
 //! runs one on every path.)
 //!
 //! # Kernel skeletons
@@ -206,9 +206,9 @@ enum SelectingModule {
 /// plain constant `value`: its `OpSpecConstant` an `OpConstant`, its `SpecId` decoration
 /// gone. The passthrough path gives the driver no specialization info, so the selector
 /// would be its default anyway; as a constant, every driver drops the other functions
-/// before it compiles. SwiftShader optimizes a module before it folds specialization
-/// constants, so with the selector left a specialization constant it compiled every
-/// function of the spec into each pipeline: three times the time, the same bits.
+/// before it compiles. With the selector left a specialization constant, SwiftShader
+/// took about three times as long to create and run each pipeline, with the same bits
+/// (docs/design/speed.md).
 pub fn with_selector(words: &[u32], value: u32) -> anyhow::Result<Vec<u32>> {
     const OP_CONSTANT: u32 = 43;
     const OP_SPEC_CONSTANT: u32 = 50;

@@ -44,9 +44,9 @@ pub static FAMILY: CodecFamily<Latlong> = CodecFamily::new(
         edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z (ring 0)",
         decode_note: "decodes are unit length to within the trig approximations' error (about 2.5e-7)",
         float_form: FloatForm::Unfilterable {
-        why: FloatForm::INDEX_SPLIT,
-        seam: seam::AZIMUTH_WRAP,
-    },
+            why: FloatForm::INDEX_SPLIT,
+            seam: seam::AZIMUTH_WRAP,
+        },
         options: &[],
     },
     |bits| Latlong { bits },

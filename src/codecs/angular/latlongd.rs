@@ -78,9 +78,9 @@ static INFO: Info = Info {
     edge_policy: "input is normalized first; zero, NaN and infinite input encode as code 0 (+Z), whatever was fetched",
     decode_note: "decodes are unit length to within the trig approximations' error (about 2.5e-7)",
     float_form: FloatForm::Unfilterable {
-    why: FloatForm::INDEX_SPLIT,
-    seam: seam::AZIMUTH_WRAP,
-},
+        why: FloatForm::INDEX_SPLIT,
+        seam: seam::AZIMUTH_WRAP,
+    },
     options: &[],
 };
 

@@ -62,9 +62,9 @@ pub static FAMILY: CodecFamily<Sfib> = CodecFamily::new(
         edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z (index 0); the encoder returns the nearest point to within 2^-18 (checked by brute force)",
         decode_note: "every code decodes to a unit vector to within the trig approximations' error (about 2.5e-7)",
         float_form: FloatForm::Unfilterable {
-        why: FloatForm::INDEX_SPLIT,
-        seam: "everywhere: neighbouring points have unrelated indices",
-    },
+            why: FloatForm::INDEX_SPLIT,
+            seam: "everywhere: neighbouring points have unrelated indices",
+        },
         options: &[],
     },
     |bits| Sfib { bits },

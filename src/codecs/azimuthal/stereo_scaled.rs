@@ -25,8 +25,8 @@ pub static FAMILY: CodecFamily<StereoScaled> = CodecFamily::new(
         edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z; directions beyond 2·atan(scale) from +Z clamp to the square's edge; -Z, where the projection is undefined, encodes as (0, 0), the corner nearest it",
         decode_note: "every code decodes to a unit vector (up to rounding)",
         float_form: FloatForm::Continuous {
-        seam: "around -Z, beyond 2·atan(scale) from +Z, where the parameters are clamped to the square's edge",
-    },
+            seam: "around -Z, beyond 2·atan(scale) from +Z, where the parameters are clamped to the square's edge",
+        },
         options: &[SCALE_OPTION, ieee::OPTION],
     },
     |bits| StereoScaled { bits, scale: DEFAULT_SCALE },

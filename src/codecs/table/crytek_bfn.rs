@@ -83,8 +83,8 @@ static INFO: Info = Info {
     edge_policy: "zero, NaN and infinite input encode as +Z at the scale 1, (128, 128, 255), whatever was fetched",
     decode_note: "decode re-normalizes (v / sqrt(v·v)); every code decodes to a unit vector",
     float_form: FloatForm::Continuous {
-    seam: "nowhere: every stored vector points along its direction (its fitted length only shifts the filter's weights)",
-},
+        seam: "nowhere: every stored vector points along its direction (its fitted length only shifts the filter's weights)",
+    },
     options: &[],
 };
 
