@@ -129,7 +129,7 @@ const FRAMES: usize = 1 << 14;
 /// the verify inputs' first [`FRAMES`] frames (seeded and edge frames), [`N`] frames per
 /// timed run as `N / FRAMES` passes over them.
 fn frames() {
-    let seeded = unitpack::codecs::core::inputs::frames();
+    let seeded = unitpack::codecs::functions::inputs::frames();
     let frames: Vec<Frame> = seeded
         .chunks_exact(7)
         .take(FRAMES)
@@ -181,7 +181,7 @@ fn frames() {
 
 fn main() {
     frames();
-    let vs = unitpack::sampling::random_unit_vectors(1, N, false);
+    let vs = unitpack::support::sampling::random_unit_vectors(1, N, false);
     let mut norm = vec![[0f32; 3]; N];
     let base = rate(|| {
         for (o, v) in norm.iter_mut().zip(black_box(&vs)) {
@@ -243,7 +243,7 @@ fn reference(spec: &str, function: &str) {
         .iter()
         .find(|f| f.name == function)
         .unwrap();
-    let input = unitpack::codecs::core::inputs::generate(&f.inputs, f.in_words);
+    let input = unitpack::codecs::functions::inputs::generate(&f.inputs, f.in_words);
     let input = &input[..N * f.in_words];
     let mut out = vec![0u32; N * f.out_words];
     let per_item = rate(|| {

@@ -10,8 +10,9 @@
 
 use std::time::Instant;
 use unitpack::Spec;
-use unitpack::codecs::core::function::Role;
+use unitpack::codecs::functions::function::Role;
 use unitpack::emit::{DEFAULT_PREFIX, Lang, render};
+use unitpack::measure::measured;
 use unitpack::verify::gpu::{Gpu, Shader};
 
 /// Items per timed dispatch and iterations per item (more for decoders, which are short).
@@ -71,7 +72,7 @@ fn per_vector(gpu: &Gpu, source: &str, iter: u32, base: f64, input: &[u32]) -> f
 
 fn main() {
     let gpu = Gpu::shared().expect("lavapipe (install mesa-vulkan-drivers)");
-    let vs = unitpack::sampling::random_unit_vectors(1, ITEMS, false);
+    let vs = unitpack::support::sampling::random_unit_vectors(1, ITEMS, false);
     let input: Vec<u32> = vs.iter().flatten().map(|x| x.to_bits()).collect();
     let base_encode = seconds(
         gpu,
@@ -117,7 +118,12 @@ fn main() {
             if words(Role::Encode) != Some((3, 1)) || words(Role::Decode) != Some((1, 3)) {
                 continue;
             }
-            let include = render(&[(spec.clone(), None)], Lang::Wgsl, DEFAULT_PREFIX, "bench");
+            let include = render(
+                &[measured(&spec, None)],
+                Lang::Wgsl,
+                DEFAULT_PREFIX,
+                "bench",
+            );
             let name = |f: &str| format!("{DEFAULT_PREFIX}{}_{f}", spec.id());
             let enc = kernel(
                 &include,

@@ -20,10 +20,10 @@
 //! ```
 
 use crate::codecs::core::codec::Codec;
-pub use crate::codecs::core::function::Width;
-use crate::codecs::core::function::{Function, Role};
 use crate::codecs::core::pipeline::{decode_packed, encode_packed};
 pub use crate::codecs::cpu::*;
+pub use crate::codecs::functions::function::Width;
+use crate::codecs::functions::function::{Function, Role};
 use crate::codecs::toolkit::quant::Code;
 use crate::codecs::{Spec, SpecError};
 use crate::model::Uint;
@@ -541,7 +541,7 @@ impl RoundTrip {
 
     /// One more record: the vector `a` and its round trip `b`.
     pub fn with(self, a: [f32; 3], b: [f32; 3]) -> RoundTrip {
-        let angle = crate::quality::angle_deg(a, b);
+        let angle = crate::measure::quality::angle_deg(a, b);
         let angle = if angle.is_nan() { 180.0 } else { angle };
         self.then(RoundTrip {
             records: 1,

@@ -24,7 +24,6 @@
 
 use crate::codecs::{Spec, SpecError};
 use crate::emit::{DEFAULT_PREFIX, Lang, render_with, validate_prefix};
-use crate::quality::{self, ErrorStats};
 use std::path::{Path, PathBuf};
 
 /// Samples behind the error figures printed in doc comments. Fewer than the accuracy
@@ -200,14 +199,9 @@ impl Generator {
     fn render_each(&self, langs: &[Lang]) -> Result<Vec<String>, GenerateError> {
         self.check()?;
         let specs = self.parsed_specs()?;
-        let stats = if self.error_stats {
-            stats_for(&specs)
-        } else {
-            vec![None; specs.len()]
-        };
-        crate::decode_bound::prove_all(&specs);
+        let samples = self.error_stats.then_some(DOC_SAMPLES);
+        let measured = crate::measure::measure(&specs, samples);
         let ids: Vec<String> = specs.iter().map(|s| s.to_string()).collect();
-        let pairs: Vec<_> = specs.into_iter().zip(stats).collect();
         Ok(langs
             .iter()
             .map(|&lang| {
@@ -219,7 +213,7 @@ impl Generator {
                 if let Some(p) = import {
                     cmd.push_str(&format!(" --wgsl-import-path {p}"));
                 }
-                render_with(&pairs, lang, &self.prefix, &cmd, import)
+                render_with(&measured, lang, &self.prefix, &cmd, import)
             })
             .collect())
     }
@@ -260,15 +254,10 @@ impl Generator {
     }
 }
 
-/// Error statistics of every spec for the doc comments (deterministic: fixed seed).
-pub fn stats_for(specs: &[Spec]) -> Vec<Option<ErrorStats>> {
-    quality::measure_all_once(specs, DOC_SAMPLES)
-}
-
-/// Writes atomically with the CLI's policy ([`crate::atomic`]): a symlink's target is
+/// Writes atomically with the CLI's policy ([`crate::support::atomic`]): a symlink's target is
 /// replaced, parent directories are created, a read-only file is refused.
 fn write(path: &Path, bytes: &[u8]) -> Result<(), GenerateError> {
-    crate::atomic::write_atomic(path, bytes).map_err(|source| GenerateError::Io {
+    crate::support::atomic::write_atomic(path, bytes).map_err(|source| GenerateError::Io {
         path: path.to_path_buf(),
         source,
     })

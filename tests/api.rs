@@ -5,8 +5,8 @@ use unitpack::api::{
     HemiOct, HemiStereo, Oct, Paraboloid, ParaboloidSquare, RoundTrip, Snorm3, SphericalZ,
     StereoScaled, Transcoder, Unorm3, Width, XySignZ, XyStereo, combine_paraboloid_pd,
 };
-use unitpack::quality::angle_deg;
-use unitpack::sampling::random_unit_vectors;
+use unitpack::measure::quality::angle_deg;
+use unitpack::support::sampling::random_unit_vectors;
 
 #[test]
 fn invalid_sizes_list_the_allowed_ones() {
@@ -163,7 +163,7 @@ fn batch_refuses_helpers_and_bad_specs() {
 /// resulting code decoded as the decoder's single calls decode it.
 #[test]
 fn frame_batches_compute_the_single_calls_bits() {
-    let input = unitpack::codecs::core::inputs::frames();
+    let input = unitpack::codecs::functions::inputs::frames();
     let frames: Vec<Frame> = input
         .chunks_exact(7)
         .map(|x| {
@@ -197,9 +197,9 @@ fn frame_batches_compute_the_single_calls_bits() {
             .zip(&back)
         {
             let (mut want, mut frame) = (vec![0u32; words], [0u32; 7]);
-            (single(unitpack::codecs::core::function::Role::Encode).eval)(x, &mut want);
+            (single(unitpack::codecs::functions::function::Role::Encode).eval)(x, &mut want);
             assert_eq!(c, &want[..], "{spec} encode of {x:x?}");
-            (single(unitpack::codecs::core::function::Role::Decode).eval)(c, &mut frame);
+            (single(unitpack::codecs::functions::function::Role::Decode).eval)(c, &mut frame);
             let got: Vec<u32> = b.n.iter().chain(&b.t).map(|v| v.to_bits()).collect();
             assert_eq!(got, frame, "{spec} decode of {c:x?}");
         }
@@ -310,7 +310,7 @@ fn float32x3_codes_are_rgb32_float_texels() {
         c.encode([f32::NAN, 0.0, 1.0]).to_array(),
         [0, 0, 0x3f80_0000]
     );
-    for v in unitpack::sampling::random_unit_vectors(5, 1000, false) {
+    for v in unitpack::support::sampling::random_unit_vectors(5, 1000, false) {
         let code = c.encode(v).to_array();
         for (w, x) in code.iter().zip(v) {
             let y = f32::from_bits(*w);

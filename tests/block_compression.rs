@@ -9,9 +9,9 @@
 use texpresso::{Algorithm, COLOUR_WEIGHTS_UNIFORM, Format, Params};
 use unitpack::api::{HemiOct, Paraboloid, ParaboloidSquare, Xy, XyStereo};
 use unitpack::codecs::Codec;
-use unitpack::doc_tables::replace_block;
+use unitpack::measure::quality::angle_deg;
 use unitpack::model::{V2, V3};
-use unitpack::quality::angle_deg;
+use unitpack::report::doc_tables::replace_block;
 
 /// The map's side in texels.
 const SIZE: usize = 256;
@@ -356,7 +356,7 @@ fn block_compression_table() {
         assert!(bc5.mean < dxt5.mean, "{}: {bc5:?} vs {dxt5:?}", r.name);
         assert!(dxt5.mean < dxt1.mean, "{}: {dxt5:?} vs {dxt1:?}", r.name);
     }
-    let b = unitpack::doc_tables::block("block_compression");
+    let b = unitpack::report::doc_tables::block("block_compression");
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(b.file);
     let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", b.file));
     let fresh = replace_block(&text, b.test, b.name, &body).unwrap_or_else(|| {
@@ -365,7 +365,7 @@ fn block_compression_table() {
             b.file
         )
     });
-    if unitpack::doc_tables::refreshing() {
+    if unitpack::report::doc_tables::refreshing() {
         if fresh != text {
             std::fs::write(&path, &fresh).unwrap();
         }
@@ -376,6 +376,6 @@ fn block_compression_table() {
         "{}'s block compression table is stale: run `{}` \
          (or `UNITPACK_REFRESH=1 cargo test --release --test block_compression` for it alone)",
         b.file,
-        unitpack::doc_tables::REFRESH_COMMAND
+        unitpack::report::doc_tables::REFRESH_COMMAND
     );
 }

@@ -3,7 +3,7 @@
 
 use unitpack::codecs::Spec;
 use unitpack::codecs::core::codec::sign_not_zero;
-use unitpack::codecs::core::function::{Emitted, Function, Inputs, Role};
+use unitpack::codecs::functions::function::{Emitted, Function, Inputs, Role};
 use unitpack::codecs::octahedral::oct::{oct_direction, oct_params};
 use unitpack::codecs::toolkit::quant::Quant;
 use unitpack::model::{V2, V3};
@@ -398,7 +398,7 @@ fn half_of(x: f32) -> u64 {
 
 #[test]
 fn packed_code_is_the_texel_a_render_target_would_store() {
-    let vs = unitpack::sampling::random_unit_vectors(11, 20_000, false);
+    let vs = unitpack::support::sampling::random_unit_vectors(11, 20_000, false);
     for spec in codecs() {
         let e = spec.emitted();
         let (enc, encf, dec) = (

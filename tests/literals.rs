@@ -8,7 +8,7 @@ use std::collections::HashSet;
 use std::path::PathBuf;
 use unitpack::codecs::Spec;
 use unitpack::emit::Lang;
-use unitpack::emit::literal::f32_literal;
+use unitpack::emit::lang::literal::f32_literal;
 use unitpack::verify::literals::{Literal, check, literals, model_literals, read};
 
 fn manifest_dir() -> PathBuf {
@@ -262,7 +262,7 @@ fn printed_literals_read_back_exactly() {
 /// values, and no include in `generated/` spelling a mask in decimal.
 #[test]
 fn masks_are_written_in_hex() {
-    use unitpack::emit::literal::u32_literal;
+    use unitpack::emit::lang::literal::u32_literal;
     for (v, text) in [
         (0x7f80_0000, "0x7f800000u"),
         (0x7f80_0001, "0x7f800001u"),

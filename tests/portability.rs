@@ -3,14 +3,14 @@
 //! what the report measures on the catalogue.
 
 use unitpack::codecs::Spec;
-use unitpack::codecs::core::function::Role;
-use unitpack::codecs::core::inputs::generate;
+use unitpack::codecs::functions::function::Role;
+use unitpack::codecs::functions::inputs::generate;
+use unitpack::measure::portability::{Functions, Options, run, ulp_distance};
 use unitpack::model::Float;
 use unitpack::model::deviant::{
     Class, Classes, DIV_ULP, Dev, Deviation, ITEM_HASH, Mode, SQRT_ULP, begin_item, item_chose,
     item_state, with,
 };
-use unitpack::portability::{Functions, Options, run, ulp_distance};
 
 fn specs(ids: &[&str]) -> Vec<Spec> {
     ids.iter()
@@ -33,7 +33,7 @@ fn reference_class_reproduces_eval() {
         "stereo_scaled16",
         "snorm12x2",
     ]) {
-        for f in spec.emitted().functions {
+        for f in &spec.emitted().functions {
             let input = generate(&f.inputs, f.in_words);
             let n = input.len() / f.in_words;
             let (mut a, mut b) = (vec![0; f.out_words], vec![0; f.out_words]);
@@ -682,14 +682,17 @@ fn kept(file: &str) -> Vec<Kept> {
         .collect()
 }
 
-/// Each kept spec's emitted functions, traced once per test.
-type Emitted = std::collections::HashMap<String, unitpack::codecs::core::function::Emitted>;
+/// Each kept spec's emitted functions, by id.
+type Emitted = std::collections::HashMap<
+    String,
+    std::sync::Arc<unitpack::codecs::functions::function::Emitted>,
+>;
 
 /// The function a kept line names.
 fn kept_function<'a>(
     emitted: &'a mut Emitted,
     k: &Kept,
-) -> &'a unitpack::codecs::core::function::Function {
+) -> &'a unitpack::codecs::functions::function::Function {
     emitted
         .entry(k.spec.clone())
         .or_insert_with(|| k.spec.parse::<Spec>().expect("a valid spec").emitted())

@@ -12,7 +12,7 @@
 //!   the text before it);
 //! - the README's figures are the tools': the codec recommendations are what `choose`
 //!   ranks first (a generated block), the crate count is what `cargo tree` counts;
-//! - each generated block is in the file `src/doc_tables.rs` names, once;
+//! - each generated block is in the file `src/report/doc_tables.rs` names, once;
 //! - every relative link resolves, to a file and to a heading;
 //! - the README stays a user's guide of at most 400 lines.
 //!
@@ -21,7 +21,7 @@
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 use std::process::Command;
-use unitpack::doc_tables::{BLOCKS, markers};
+use unitpack::report::doc_tables::{BLOCKS, markers};
 
 fn root() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -316,9 +316,10 @@ fn readme_figures_are_the_tools() {
     // The recommendations: what `choose` ranks first for each case, from the catalogue
     // compiled into the binary (tests/cli/choose.rs runs each command).
     let table = unitpack::choice::recommend::table(&unitpack::choice::catalogue::Catalogue::load());
-    let fresh = unitpack::doc_tables::replace_block(&readme, "readme", "recommendations", &table)
-        .expect("README.md has the recommendations block");
-    if unitpack::doc_tables::refreshing() {
+    let fresh =
+        unitpack::report::doc_tables::replace_block(&readme, "readme", "recommendations", &table)
+            .expect("README.md has the recommendations block");
+    if unitpack::report::doc_tables::refreshing() {
         if fresh != readme {
             std::fs::write(root().join("README.md"), &fresh).unwrap();
         }

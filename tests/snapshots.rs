@@ -15,10 +15,12 @@ use std::sync::OnceLock;
 
 use unitpack::codecs::Spec;
 use unitpack::emit::docs::file_header;
+use unitpack::emit::lang::literal::f32_literal;
+use unitpack::emit::lang::printer::print;
 use unitpack::emit::lang::{FileOptions, Returns};
-use unitpack::emit::literal::f32_literal;
-use unitpack::emit::printer::print;
-use unitpack::emit::{DEFAULT_PREFIX, FnView, Lang, SpecView, Wrapper, render, struct_defs};
+use unitpack::emit::lang::{FnView, SpecView, Wrapper};
+use unitpack::emit::{DEFAULT_PREFIX, Lang, render, struct_defs};
+use unitpack::measure::measured;
 use unitpack::model::trace::{Module, Shape, Tf, Tu, define, define_fields, trace_module};
 use unitpack::model::{Bool, Float, Lane, Uint, V2, V3, V4};
 
@@ -43,7 +45,7 @@ fn command(spec: &Spec, lang: Lang) -> String {
 /// A spec's include without error statistics: what the emitter writes, independent of
 /// measurement (the CLI tests' `generate --check` holds the figures to `generated/`).
 fn rendered(spec: &Spec, lang: Lang, prefix: &str) -> String {
-    render(&[(spec.clone(), None)], lang, prefix, &command(spec, lang))
+    render(&[measured(spec, None)], lang, prefix, &command(spec, lang))
 }
 
 struct Include {
@@ -60,7 +62,7 @@ fn catalogue() -> &'static [Include] {
     ALL.get_or_init(|| {
         let specs = Spec::all();
         assert!(!specs.is_empty());
-        unitpack::par::map(&specs, |spec| {
+        unitpack::support::par::map(&specs, |spec| {
             Lang::ALL.map(|lang| Include {
                 spec: spec.clone(),
                 lang,
@@ -200,7 +202,7 @@ fn rendering_is_deterministic() {
         );
     }
     for lang in Lang::ALL {
-        let all: Vec<_> = Spec::all().into_iter().map(|s| (s, None)).collect();
+        let all: Vec<_> = Spec::all().iter().map(|s| measured(s, None)).collect();
         assert_eq!(
             render(&all, lang, DEFAULT_PREFIX, "x"),
             render(&all, lang, DEFAULT_PREFIX, "x"),
@@ -667,6 +669,7 @@ fn shapes_include(lang: Lang) -> String {
         guard: format!("MY_SHAPES_{}", lang.ext()).to_ascii_uppercase(),
         title: "shapes: every statement shape the printer writes".into(),
         doc: vec!["Source: the printer's test.".into()],
+        portable: false,
         types: struct_defs(backend.as_ref(), &module.funcs, &defined),
         functions,
     };

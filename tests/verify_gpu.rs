@@ -56,7 +56,7 @@ fn every_function_is_bit_exact_on_every_path() {
 /// rows pass), and no float output became NaN or changed an infinity where the model's
 /// did not: no row's largest difference is infinite.
 fn hostile_inputs_encode_as_documented_on_the_new_paths(report: &unitpack::verify::Report) {
-    use unitpack::codecs::core::inputs::{edge_frames, edge_vectors};
+    use unitpack::codecs::functions::inputs::{edge_frames, edge_vectors};
     use unitpack::verify::GL_ITEMS;
     let edges = edge_vectors();
     assert!(edges.len() <= GL_ITEMS / 2, "{} edge vectors", edges.len());

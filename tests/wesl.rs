@@ -7,6 +7,7 @@
 use unitpack::codecs::Spec;
 use unitpack::emit::lang::{KernelFn, Returns};
 use unitpack::emit::{DEFAULT_PREFIX, Lang, render};
+use unitpack::measure::measured;
 use unitpack::model::trace::Ty;
 use unitpack::verify::gpu::{Gpu, Shader};
 use unitpack::verify::tools::naga_wgsl;
@@ -150,7 +151,7 @@ fn link(specs: &[Spec]) -> String {
 #[test]
 fn each_module_is_its_wgsl_include_renamed() {
     for spec in Spec::all() {
-        let wgsl = render(&[(spec.clone(), None)], Lang::Wgsl, DEFAULT_PREFIX, "x");
+        let wgsl = render(&[measured(&spec, None)], Lang::Wgsl, DEFAULT_PREFIX, "x");
         let module = module_text(&spec);
         assert!(!module.contains(DEFAULT_PREFIX), "{spec}: a prefixed name");
         // The wesl crate reads a hexadecimal float's exponent wrongly (as a power of 16).
@@ -193,7 +194,9 @@ fn two_linked_modules_run_bit_exact() {
     let mut models = Vec::new();
     for spec in &specs {
         let e = spec.emitted();
-        for ((name, _, params, ret), f) in functions(spec).into_iter().zip(e.functions) {
+        for ((name, _, params, ret), f) in
+            functions(spec).into_iter().zip(e.functions.iter().cloned())
+        {
             funcs.push((name, params, ret));
             models.push((spec.to_string(), f));
         }

@@ -12,7 +12,7 @@
 use super::filtering::{self, Filtering};
 use super::formats::{self, Format};
 use crate::codecs::Spec;
-use crate::quality::ErrorStats;
+use crate::measure::figures::ErrorStats;
 use serde::{Deserialize, Serialize};
 
 /// The file, as compiled in.
@@ -120,15 +120,15 @@ impl Catalogue {
 pub fn compute(specs: &[Spec], stats: &[Option<ErrorStats>], alu: &[[u32; 4]]) -> Catalogue {
     assert_eq!(specs.len(), stats.len());
     assert_eq!(specs.len(), alu.len());
-    crate::decode_bound::prove_all(specs);
-    let rows = crate::par::map(specs, |spec| {
+    crate::measure::decode_bound::prove_all(specs);
+    let rows = crate::support::par::map(specs, |spec| {
         let e = spec.emitted();
         let domain = spec.info().domain.expect("a codec spec has a domain");
         let bound = |name: &str| {
             e.functions
                 .iter()
                 .find(|f| f.name == name)
-                .and_then(|f| crate::decode_bound::cached(&e.module, f))
+                .and_then(|f| crate::measure::decode_bound::cached(&e.module, f))
                 .map(|b| b.units)
         };
         (
@@ -183,7 +183,7 @@ pub fn compute(specs: &[Spec], stats: &[Option<ErrorStats>], alu: &[[u32; 4]]) -
         .collect();
     Catalogue {
         samples,
-        vector_seed: format!("{:#x}", crate::quality::VECTOR_SEED),
+        vector_seed: format!("{:#x}", crate::measure::figures::VECTOR_SEED),
         filter_seed: format!("{:#x}", filtering::SEED),
         filter_pairs: filtering::PAIRS,
         specs,

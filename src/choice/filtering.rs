@@ -17,10 +17,10 @@
 //! in f64 and rounded to f32, as a texture unit's exact filter would deliver it; the
 //! codec arithmetic is the model's, in f32, on the CPU lanes.
 
-use crate::codecs::core::codec::Domain;
-use crate::codecs::core::function::{Emitted, Function, Inputs, Role};
+use crate::codecs::core::info::Domain;
+use crate::codecs::functions::function::{Emitted, Function, Inputs, Role};
 use crate::codecs::toolkit::quant::Quant;
-use crate::quality::angle_deg;
+use crate::measure::quality::angle_deg;
 use rand_core::Rng;
 use rand_pcg::Pcg64Mcg;
 use serde::{Deserialize, Serialize};

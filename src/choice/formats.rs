@@ -10,7 +10,7 @@
 //! formats the layout is made for.
 
 use crate::codecs::Spec;
-use crate::codecs::core::function::{Emitted, Inputs, Role};
+use crate::codecs::functions::function::{Emitted, Inputs, Role};
 use crate::codecs::toolkit::quant::Quant;
 use serde::{Deserialize, Serialize};
 

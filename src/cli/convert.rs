@@ -4,11 +4,11 @@
 //! a map converted here decodes in the shader to what `unitpack decode` prints.
 
 use super::output;
-use super::png_file::{self, Picture};
 use crate::api::Batch;
-use crate::atomic::write_atomic_with;
-use crate::codecs::core::function::Function;
-use crate::codecs::{Spec, toolkit::texel};
+use crate::codecs::functions::function::Function;
+use crate::codecs::{Spec, core::texel};
+use crate::support::atomic::write_atomic_with;
+use crate::support::png_file::{self, Picture};
 use anyhow::{Context, Result, bail};
 use indicatif::{ProgressBar, ProgressStyle};
 use png::{BitDepth, ColorType};
@@ -53,8 +53,9 @@ pub fn run(input: &Path, output: &Path, dir: Direction, force: bool) -> Result<(
             let Some(encode) = spec
                 .emitted()
                 .functions
-                .into_iter()
+                .iter()
                 .find(|f| f.name == name)
+                .cloned()
             else {
                 bail!("{spec} has one texel form; --dxt1 is for the xra layout");
             };

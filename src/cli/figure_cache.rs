@@ -1,6 +1,6 @@
 //! The figures every include states, kept on disk between runs of `gen` and `generate`:
-//! each decoder's proven bound ([`crate::decode_bound`]) and each spec's error statistics
-//! ([`crate::quality`]), a frame spec's frame figures included. Proving and measuring the whole catalogue is two thirds of a
+//! each decoder's proven bound ([`crate::measure::decode_bound`]) and each spec's error statistics
+//! ([`crate::measure::quality`]), a frame spec's frame figures included. Proving and measuring the whole catalogue is two thirds of a
 //! `generate`; the figures are a function of the program and its math library alone, so
 //! a later run of the same executable can take them as they were.
 //!
@@ -14,8 +14,10 @@
 //! start with this module's header is never replaced, and failing to write costs only the
 //! next run's time: the cache never changes what a run prints or writes.
 
-use crate::decode_bound::{self, Bound};
-use crate::quality::{self, ErrorStats, FrameStats, StatsKey};
+use crate::measure::decode_bound;
+use crate::measure::figures::Bound;
+use crate::measure::figures::{ErrorStats, FrameStats};
+use crate::measure::quality::{self, StatsKey};
 use std::fmt::Write as _;
 use std::hash::Hasher;
 use std::path::PathBuf;
@@ -132,7 +134,7 @@ impl Session {
         }
         let mut text = format(&self.header, &bounds, &stats);
         text.push_str(&format_frames(&frames));
-        let _ = crate::atomic::write_atomic(&self.path, text.as_bytes());
+        let _ = crate::support::atomic::write_atomic(&self.path, text.as_bytes());
     }
 }
 

@@ -12,14 +12,14 @@
 //! first run proves every bound and measures every figure, which takes a while) and, at
 //! the end, what it wrote and how long it took: see [`Progress`].
 
-use super::include::stats_for;
 use super::manifest::{self, HEADER, MANIFEST};
 use super::output;
-use crate::atomic::AtomicFile;
 use crate::codecs::Spec;
 use crate::codecs::core::spec::{Table, TableFormat};
 use crate::emit::{DEFAULT_PREFIX, Lang, render, render_wesl};
-use crate::quality::ErrorStats;
+use crate::generator::DOC_SAMPLES;
+use crate::measure::figures::Measured;
+use crate::support::atomic::AtomicFile;
 use anyhow::{Context, Result, bail};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::collections::BTreeSet;
@@ -35,29 +35,28 @@ use std::time::{Duration, Instant};
 fn catalogue_files(progress: &Progress) -> Result<Vec<(PathBuf, Vec<u8>)>> {
     let specs = Spec::all();
     progress.stage(format!(
-        "measuring the error figures of {} specs",
+        "measuring the error figures of {} specs and proving their decoders' bounds",
         specs.len()
     ));
-    let stats = stats_for(&specs);
-    progress.stage("proving the decoders' error bounds".into());
-    crate::decode_bound::prove_all(&specs);
+    let measured = crate::measure::measure(&specs, Some(DOC_SAMPLES));
     progress.stage(format!(
         "rendering {} includes and {} WESL modules",
         specs.len() * Lang::ALL.len(),
         specs.len()
     ));
     // Every include and module on every core, in the order written here.
-    let jobs: Vec<(Option<Lang>, &Spec, &Option<ErrorStats>)> = Lang::ALL
+    let jobs: Vec<(Option<Lang>, &Measured)> = Lang::ALL
         .into_iter()
         .map(Some)
         .chain([None])
-        .flat_map(|lang| specs.iter().zip(&stats).map(move |(s, st)| (lang, s, st)))
+        .flat_map(|lang| measured.iter().map(move |m| (lang, m)))
         .collect();
-    let mut files = crate::par::map(&jobs, |&(lang, spec, st)| match lang {
+    let mut files = crate::support::par::map(&jobs, |&(lang, m)| match lang {
         Some(lang) => {
+            let spec = &m.spec;
             // The same command `gen` writes, so that running it reproduces the file.
             let cmd = format!("unitpack gen {spec} --lang {lang}");
-            let text = render(&[(spec.clone(), *st)], lang, DEFAULT_PREFIX, &cmd);
+            let text = render(std::slice::from_ref(m), lang, DEFAULT_PREFIX, &cmd);
             (
                 PathBuf::from(lang.name()).join(format!("{}.{}", spec.id(), lang.ext())),
                 text.into_bytes(),
@@ -65,8 +64,8 @@ fn catalogue_files(progress: &Progress) -> Result<Vec<(PathBuf, Vec<u8>)>> {
         }
         // The WGSL includes again as WESL modules, imported as `unitpack::<stem>`.
         None => (
-            PathBuf::from(manifest::WESL).join(format!("{}.wesl", spec.id())),
-            render_wesl(spec, *st, "unitpack generate").into_bytes(),
+            PathBuf::from(manifest::WESL).join(format!("{}.wesl", m.spec.id())),
+            render_wesl(m, "unitpack generate").into_bytes(),
         ),
     });
     files.push((PathBuf::from(manifest::INDEX), index(&specs).into_bytes()));
@@ -139,7 +138,7 @@ fn png(t: &Table) -> Result<Vec<u8>> {
         1 => png::ColorType::Grayscale,
         _ => png::ColorType::Rgba,
     };
-    super::png_file::encode(t.width, t.height, color, png::BitDepth::Eight, &t.bytes)
+    crate::support::png_file::encode(t.width, t.height, color, png::BitDepth::Eight, &t.bytes)
         .with_context(|| format!("encoding {} as PNG", t.stem))
 }
 

@@ -2,15 +2,13 @@
 //! in a directory.
 
 use super::output;
-use crate::atomic::AtomicFile;
 use crate::codecs::Spec;
 use crate::emit::Lang;
 use crate::generator::Generator;
+use crate::support::atomic::AtomicFile;
 use anyhow::{Context, Result, bail};
 use std::io::Write;
 use std::path::{Path, PathBuf};
-
-pub use crate::generator::stats_for;
 
 /// The include for `specs` (duplicates dropped: one name, one definition).
 pub fn gen_text(specs: &[Spec], lang: Lang, prefix: &str) -> String {

@@ -43,8 +43,8 @@ pub fn list_text() -> String {
             .iter()
             .filter(|s| std::ptr::addr_eq(s.family(), *f))
         {
-            if let Some(stats) = crate::quality::measure_frames(spec) {
-                let ((n, t, bits), base) = crate::quality::oct_frame_baseline(spec.bits());
+            if let Some(stats) = crate::measure::quality::measure_frames(spec) {
+                let ((n, t, bits), base) = crate::measure::quality::oct_frame_baseline(spec.bits());
                 s.push_str(&format!(
                     "{:<w$}   {}: over {} seeded orthonormal frames, mean / sample max: {}\n{:<w$}   against {n} + {t} + sign ({bits} bits): {}\n",
                     "",

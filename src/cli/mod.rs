@@ -3,7 +3,7 @@
 //!
 //! Output never goes through `print!` (it panics on a closed or full stdout): see
 //! [`output`]. Files are replaced atomically and only when they are the user's to replace:
-//! see [`crate::atomic`] and `manifest`.
+//! see [`crate::support::atomic`] and `manifest`.
 
 mod choose;
 mod convert;
@@ -14,7 +14,6 @@ mod include;
 mod list;
 mod manifest;
 pub mod output;
-pub(crate) mod png_file;
 mod report;
 pub mod runtime_dir;
 mod stream;
@@ -28,7 +27,7 @@ use clap::{Parser, Subcommand};
 use std::io::{BufRead, BufReader, Write};
 use std::path::PathBuf;
 
-pub use crate::atomic::{AtomicFile, write_atomic, write_atomic_with};
+pub use crate::support::atomic::{AtomicFile, write_atomic, write_atomic_with};
 pub use generate::{generate, generate_with};
 pub use include::gen_text;
 pub use list::{GRAMMAR, list_json, list_text};
@@ -465,10 +464,10 @@ pub fn run(cli: Cli) -> Result<i32> {
                 });
             }
             if portable {
-                let report = crate::portability::run(
+                let report = crate::measure::portability::run(
                     &specs,
-                    &crate::portability::cli_classes(),
-                    &crate::portability::Options::cli(),
+                    &crate::measure::portability::cli_classes(),
+                    &crate::measure::portability::Options::cli(),
                 );
                 output::print(&if json { report.json() } else { report.table() })?;
                 return Ok(if report.guarantees_hold() { 0 } else { 1 });

@@ -17,12 +17,12 @@
 //! (float32x3).
 //!
 //! The first bad line or record ends the run with an error naming it. Output before it
-//! has been written (to stdout) or is discarded (`--out`, see [`crate::atomic`]).
+//! has been written (to stdout) or is discarded (`--out`, see [`crate::support::atomic`]).
 
 use super::grammar::{self, LineError, quote};
 use crate::api::{RoundTrip, Transcoder};
 use crate::codecs::Spec;
-use crate::codecs::core::function::{Function, Inputs, Role};
+use crate::codecs::functions::function::{Function, Inputs, Role};
 use crate::codecs::toolkit::quant::code_width;
 use anyhow::{Result, bail};
 use std::io::{BufRead, ErrorKind, Read, Write};

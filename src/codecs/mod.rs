@@ -1,11 +1,11 @@
 //! The codecs, each written once against the model's vocabulary in a file of its own and
 //! grouped by kind, plus the machinery they share:
 //!
-//! - [`core`]: what a codec and a codec family are, the spec grammar, and the shader
-//!   functions a spec emits with their evaluations and verify inputs;
+//! - [`core`]: what a codec and a codec family are, and the spec grammar;
+//! - [`functions`]: the shader functions a spec emits, with their evaluations, verify
+//!   inputs and enclosures (how they are checked and proven);
 //! - [`toolkit`]: quantization and packing, exact (portable) arithmetic, the precise
-//!   search, fixed-point and polynomial trigonometry, normal-map texel layouts — the pieces
-//!   a codec is built from;
+//!   search, fixed-point and polynomial trigonometry — the pieces a codec is built from;
 //! - one folder per kind of codec: [`octahedral`], [`component`] (per-component),
 //!   [`angular`] (spherical angles and point sets), [`azimuthal`] (hemisphere-to-disk
 //!   projections and their square maps), [`cube_maps`], [`table`] (table-driven) and [`engine`] (engines' own formats).
@@ -18,6 +18,8 @@
 // [`cpu`] and `crate::api`); public for the integration tests and the binary.
 #[doc(hidden)]
 pub mod core;
+#[doc(hidden)]
+pub mod functions;
 #[doc(hidden)]
 pub mod toolkit;
 
@@ -54,7 +56,7 @@ macro_rules! registry {
         /// The codec types the CPU API offers.
         pub mod cpu {
             $($($(pub use super::$kind::$module::{$($cpu),+};)?)*)*
-            pub use super::toolkit::texel::{Layout, Texel};
+            pub use super::core::texel::{Layout, Texel};
         }
     };
 }
@@ -151,4 +153,26 @@ pub fn helper_doc(first: &dyn Family, name: &str) -> Option<String> {
         .or_else(|| core::codec::helper_doc(name))
         .or_else(|| toolkit::trig::helper_doc(name))
         .or_else(|| FAMILIES.iter().find_map(|f| f.helper_doc(name)))
+}
+
+/// A spec is parsed against the registry: the grammar (`core::spec`) is handed
+/// [`FAMILIES`] here, so that it names no registry of its own.
+impl std::str::FromStr for Spec {
+    type Err = SpecError;
+    fn from_str(given: &str) -> Result<Spec, SpecError> {
+        Spec::parse_in(FAMILIES, given)
+    }
+}
+
+impl Spec {
+    /// Every spec `generate` writes: each size of each registered family with default
+    /// options (fast and precise), plus each family's variants.
+    pub fn all() -> Vec<Spec> {
+        Spec::all_in(FAMILIES)
+    }
+}
+
+/// Every spelling a user can type, for suggestions and `list`.
+pub fn valid_names() -> Vec<String> {
+    core::spec::valid_names_in(FAMILIES)
 }

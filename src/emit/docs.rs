@@ -4,12 +4,12 @@
 //! in the file header, a spec's source and measured error under its title; a function's
 //! comment says what is its own (docs/design/printer.md).
 
-use super::printer::Printed;
+use super::lang::printer::Printed;
 use crate::codecs::Spec;
-use crate::codecs::core::function::{Emitted, Inputs, Role};
+use crate::codecs::core::texel;
+use crate::codecs::functions::function::{Emitted, Inputs, Role};
 use crate::codecs::toolkit::quant::{Quant, field_offsets};
-use crate::codecs::toolkit::texel;
-use crate::quality::ErrorStats;
+use crate::measure::figures::{Figures, UNIT, VECTOR_SEED};
 
 /// The file's header paragraphs: what was generated and how, the guarantees every
 /// function in the file shares, and what the per-function "Portable" lines and the error
@@ -29,7 +29,7 @@ pub fn file_header(command: &str, portable: bool, errors: bool) -> Vec<String> {
     if errors {
         h.push(format!(
             "Round-trip errors (encode, store, decode) are over a sample of seeded unit vectors (seed 0x{:032x}); a sample maximum is not a bound.",
-            crate::quality::VECTOR_SEED
+            VECTOR_SEED
         ));
     }
     h
@@ -40,7 +40,7 @@ const PORTABLE_WHERE: &str = "Portable, below, means: on every implementation th
 
 /// The paragraphs under a spec's title: its source, the file of its model and its measured
 /// error.
-pub fn spec_doc(spec: &Spec, stats: Option<ErrorStats>) -> Vec<String> {
+pub fn spec_doc(spec: &Spec, figures: &Figures) -> Vec<String> {
     let mut d = vec![
         format!("Source: {}.", spec.info().source),
         format!(
@@ -48,17 +48,17 @@ pub fn spec_doc(spec: &Spec, stats: Option<ErrorStats>) -> Vec<String> {
             crate::codecs::source_file(spec.family())
         ),
     ];
-    if let Some(f) = crate::quality::measure_frames(spec) {
-        let ((normal, tangent, bits), base) = crate::quality::oct_frame_baseline(spec.bits());
+    if let Some(f) = &figures.frames {
+        let ((normal, tangent, bits), base) = &f.baseline;
         d.push(format!(
             "Frame round-trip error over {} seeded orthonormal frames (seed 0x{:032x}; the reference tangent made orthogonal to the normal; mean / sample max, not a bound): {}. Against {normal} + {tangent} + sign ({bits} bits): {}.",
-            f.samples,
-            crate::codecs::core::inputs::FRAME_SEED,
-            f.summary(true),
+            f.stats.samples,
+            crate::codecs::functions::inputs::FRAME_SEED,
+            f.stats.summary(true),
             base.summary(false)
         ));
     }
-    d.extend(stats.map(|s| {
+    d.extend(figures.errors.map(|s| {
         format!(
             "Round-trip error over {} vectors: mean {:.5}°, sample max {:.5}°; MSE of the components of n - n' {:.3e}, PSNR {:.2} dB.",
             s.samples,
@@ -195,10 +195,22 @@ fn encoder_portability(spec: &Spec, portable: bool) -> &'static str {
     }
 }
 
+/// Whether a function of the spec is marked "Portable": a packed encoder of the portable
+/// tier, or a decoder with a proven bound.
+pub fn has_portable(spec: &Spec, e: &Emitted, figures: &Figures) -> bool {
+    let encoder = e.portable_encoder
+        && !crate::codecs::core::ieee::asked(spec)
+        && e.functions.iter().any(|f| f.role == Role::Encode);
+    let decoder = [Role::Decode, Role::DecodeFloat]
+        .into_iter()
+        .any(|role| decoder_portability(e, figures, role).is_some());
+    encoder || decoder
+}
+
 /// What a decoder guarantees beyond lavapipe: its proven bound.
-fn decoder_portability(e: &Emitted, role: Role) -> Option<String> {
+fn decoder_portability(e: &Emitted, figures: &Figures, role: Role) -> Option<String> {
     let f = e.functions.iter().find(|f| f.role == role)?;
-    let b = crate::decode_bound::cached(&e.module, f)?;
+    let b = figures.bounds.get(f.name)?;
     // A format whose valid codes hold a field at one value is proven for those codes.
     let codes = if f.enclose.as_ref().is_some_and(|x| !x.fixed.is_empty()) {
         "every valid code"
@@ -213,13 +225,14 @@ fn decoder_portability(e: &Emitted, role: Role) -> Option<String> {
     Some(format!(
         "Portable within a bound (as the header says): each output component is within {}·2^-24 ({:.2e}) of what this function computes here, for {codes}: a bound proven by interval evaluation (unitpack verify --portable prints it).",
         b.units,
-        b.units * crate::decode_bound::UNIT
+        b.units * UNIT
     ))
 }
 
 pub fn function_doc(
     spec: &Spec,
     e: &Emitted,
+    figures: &Figures,
     p: &Printed,
     role: Option<Role>,
     local: &str,
@@ -336,7 +349,7 @@ pub fn function_doc(
     };
     match role {
         Role::Decode | Role::DecodeFloat => {
-            let own = decoder_portability(e, role);
+            let own = decoder_portability(e, figures, role);
             // A decoder whose bound is its float form's says so rather than repeating it.
             let float_form = e
                 .functions
@@ -344,7 +357,7 @@ pub fn function_doc(
                 .find(|f| f.role == Role::DecodeFloat)
                 .filter(|_| role == Role::Decode);
             match float_form {
-                Some(ff) if own.is_some() && own == decoder_portability(e, Role::DecodeFloat) => {
+                Some(ff) if own.is_some() && own == decoder_portability(e, figures, Role::DecodeFloat) => {
                     let prefix = p.name.strip_suffix(local).unwrap_or(&p.name);
                     d.push(format!(
                         "Portable as {prefix}{} is, within the same bound.",

@@ -1,18 +1,15 @@
-//! Emission: traced functions → WGSL, GLSL, HLSL or C text. [`printer`] walks each
-//! traced function once; each language's module in [`lang`] owns its syntax, its askama
+//! Emission: traced functions and their measured figures ([`Measured`]) → WGSL, GLSL,
+//! HLSL or C text. Emission only prints: every figure a comment quotes was measured
+//! before (`crate::measure`). [`printer`] walks each traced function once; each language's module in [`lang`] owns its syntax, its askama
 //! file template (in `templates/`) and its verification kernel; [`docs`] writes the doc
 //! comments.
 
 pub mod docs;
 pub mod lang;
-pub mod layout;
-pub mod literal;
-pub mod printer;
 
-use crate::codecs::Spec;
-use crate::quality::ErrorStats;
-use lang::{Backend, FileOptions};
-use printer::Printed;
+use crate::measure::figures::Measured;
+use lang::printer::Printed;
+use lang::{Backend, FileOptions, FnView, SpecView, Wrapper, layout, printer};
 use std::fmt;
 
 /// A target language.
@@ -74,54 +71,16 @@ impl std::str::FromStr for Lang {
 /// The default name prefix: WGSL has no preprocessor, so names must not clash.
 pub const DEFAULT_PREFIX: &str = "unitpack_";
 
-/// Macros are global in GLSL, HLSL and C: without a prefix they still carry the tool's name.
-pub fn macro_prefix(prefix: &str) -> String {
-    if prefix.is_empty() {
-        "UNITPACK_".into()
-    } else {
-        prefix.to_ascii_uppercase()
-    }
-}
-
-/// C's public array-based entry point of a function whose struct form is [`FnView::name`].
-pub struct Wrapper {
-    /// The public name.
-    pub name: String,
-    pub signature: String,
-    pub body: Vec<String>,
-}
-
-pub struct FnView {
-    pub doc: Vec<String>,
-    pub name: String,
-    pub params: Vec<(String, String)>,
-    pub ret_ty: String,
-    pub body: Vec<String>,
-    pub wrapper: Option<Wrapper>,
-}
-
-pub struct SpecView {
-    pub guard: String,
-    pub title: String,
-    /// Paragraphs under the title: what the spec's functions share.
-    pub doc: Vec<String>,
-    /// The definitions of the structs its functions return ([`Backend::struct_def`]),
-    /// each once, before the functions.
-    pub types: Vec<String>,
-    pub functions: Vec<FnView>,
-}
-
 /// One spec's functions in `lang`, named `{prefix}{namespace}_{name}`, or by their own
 /// names alone where not `namespaced` (a WESL module, whose path names the spec).
 pub fn spec_view(
-    spec: &Spec,
+    m: &Measured,
     lang: Lang,
     backend: &dyn Backend,
     prefix: &str,
-    stats: Option<ErrorStats>,
     namespaced: bool,
 ) -> SpecView {
-    let e = spec.emitted();
+    let (spec, e) = (&m.spec, &*m.emitted);
     let ns = if e.namespace.is_empty() || !namespaced {
         String::new()
     } else {
@@ -153,7 +112,7 @@ pub fn spec_view(
                 name: public(&f.name),
                 ..p
             };
-            let doc = docs::function_doc(spec, &e, &shown, role, &f.name);
+            let doc = docs::function_doc(spec, e, &m.figures, &shown, role, &f.name);
             FnView {
                 doc,
                 name: defined(&f.name),
@@ -168,7 +127,8 @@ pub fn spec_view(
     SpecView {
         guard: format!("{}{}_{}", prefix, spec.id(), lang.ext()).to_ascii_uppercase(),
         title: docs::spec_title(spec),
-        doc: docs::spec_doc(spec, stats),
+        doc: docs::spec_doc(spec, &m.figures),
+        portable: docs::has_portable(spec, e, &m.figures),
         types,
         functions,
     }
@@ -200,18 +160,13 @@ pub fn struct_defs(
 }
 
 /// A complete include file for the given specs.
-pub fn render(
-    specs: &[(Spec, Option<ErrorStats>)],
-    lang: Lang,
-    prefix: &str,
-    command: &str,
-) -> String {
+pub fn render(specs: &[Measured], lang: Lang, prefix: &str, command: &str) -> String {
     render_with(specs, lang, prefix, command, None)
 }
 
 /// [`render`], with a WGSL `#define_import_path` when `import_path` is given.
 pub fn render_with(
-    specs: &[(Spec, Option<ErrorStats>)],
+    specs: &[Measured],
     lang: Lang,
     prefix: &str,
     command: &str,
@@ -220,9 +175,9 @@ pub fn render_with(
     let backend = lang.backend(prefix);
     let views: Vec<SpecView> = specs
         .iter()
-        .map(|(s, st)| spec_view(s, lang, backend.as_ref(), prefix, *st, true))
+        .map(|m| spec_view(m, lang, backend.as_ref(), prefix, true))
         .collect();
-    let errors = specs.iter().any(|(_, st)| st.is_some());
+    let errors = specs.iter().any(|m| m.figures.errors.is_some());
     file(
         backend.as_ref(),
         views,
@@ -237,17 +192,11 @@ pub fn render_with(
 /// `unitpack::oct16`): the same functions, text and comments, each named by its own name
 /// alone (`encode`, `decode_float`), since the module path names the spec and WESL's
 /// linker gives every imported declaration a name of its own.
-pub fn render_wesl(spec: &Spec, stats: Option<ErrorStats>, command: &str) -> String {
+pub fn render_wesl(m: &Measured, command: &str) -> String {
     let backend = Lang::Wgsl.backend("");
-    let views = vec![spec_view(
-        spec,
-        Lang::Wgsl,
-        backend.as_ref(),
-        "",
-        stats,
-        false,
-    )];
-    file(backend.as_ref(), views, stats.is_some(), command, "", None)
+    let views = vec![spec_view(m, Lang::Wgsl, backend.as_ref(), "", false)];
+    let errors = m.figures.errors.is_some();
+    file(backend.as_ref(), views, errors, command, "", None)
 }
 
 /// The whole file of `views`: shared paragraphs referred back, the header, the template,
@@ -261,12 +210,7 @@ fn file(
     import_path: Option<&str>,
 ) -> String {
     refer_back(&mut views);
-    let functions = || views.iter().flat_map(|v| &v.functions);
-    let header = docs::file_header(
-        command,
-        functions().any(|f| f.doc.iter().any(|d| d.starts_with("Portable"))),
-        errors,
-    );
+    let header = docs::file_header(command, views.iter().any(|v| v.portable), errors);
     let mut s = backend.render(
         &views,
         &FileOptions {

@@ -16,7 +16,7 @@
 //! Sound by construction: the module is private to the crate, and its values exist only
 //! inside functions compiled with `#[target_feature(enable = "avx2")]` (or AVX2 and
 //! AVX-512VL) that run after [`available`] (or [`avx512_available`]) said yes
-//! ([`crate::codecs::core::function::Function::eval_many`], the typed slices of [`crate::api`]).
+//! ([`crate::codecs::functions::function::Function::eval_many`], the typed slices of [`crate::api`]).
 //! Those functions must inline everything the models call: an operation left in a function
 //! compiled for the baseline target becomes a call to an out-of-line intrinsic. So the
 //! operations here, and the models' generic functions, methods and closures in
@@ -47,7 +47,7 @@ pub fn available() -> bool {
 }
 
 /// Whether this processor also runs the eight-lane code compiled for AVX-512F and VL
-/// ([`crate::codecs::core::function::Width::EightAvx512`]; checked once, then cached by std).
+/// ([`crate::codecs::functions::function::Width::EightAvx512`]; checked once, then cached by std).
 #[inline]
 pub fn avx512_available() -> bool {
     available() && is_x86_feature_detected!("avx512f") && is_x86_feature_detected!("avx512vl")

@@ -1,6 +1,6 @@
 //! Enclosures: the model's vocabulary evaluated over a *set* of inputs and over *every*
 //! implementation the guaranteed deviation classes allow at once, to prove how far a
-//! decoder's output can move ([`crate::decode_bound`]).
+//! decoder's output can move ([`crate::measure::decode_bound`]).
 //!
 //! An [`Encl`] holds two intervals: `[lo, hi]` contains the reference value (the `f32`
 //! model, every operation correctly rounded) for every input of the set, and

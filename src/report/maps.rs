@@ -7,9 +7,9 @@
 //! codec's domain are drawn grey.
 
 use crate::codecs::Spec;
-use crate::codecs::core::codec::Domain;
-use crate::codecs::core::function::Role;
-use crate::quality::angle_deg;
+use crate::codecs::core::info::Domain;
+use crate::codecs::functions::function::Role;
+use crate::measure::quality::angle_deg;
 use rand_core::Rng;
 use rand_pcg::Pcg64Mcg;
 
@@ -142,8 +142,8 @@ pub fn measure(spec: &Spec) -> SpecMaps {
         height: OCTAHEDRAL,
         cells: (w * h..w * h + OCTAHEDRAL * OCTAHEDRAL).map(cell).collect(),
     };
-    let sample = crate::sampling::random_unit_vectors(
-        crate::quality::VECTOR_SEED,
+    let sample = crate::support::sampling::random_unit_vectors(
+        crate::measure::figures::VECTOR_SEED,
         HISTOGRAM_SAMPLES,
         hemisphere,
     );

@@ -15,13 +15,14 @@
 //! replaced atomically.
 
 pub mod charts;
+pub mod doc_tables;
 pub mod maps;
 
 use crate::choice::catalogue::{Catalogue, Entry};
 use crate::choice::filtering::{self, DECIDING_SEPARATION, FilterStats};
 use crate::codecs::{FAMILIES, Spec};
 use crate::emit::Lang;
-use crate::emit::printer;
+use crate::emit::lang::printer;
 use anyhow::{Context, Result, bail};
 use askama::Template;
 use std::collections::BTreeMap;
@@ -263,7 +264,7 @@ fn signatures(spec: &Spec) -> String {
 type Files = BTreeMap<PathBuf, Vec<u8>>;
 
 fn png(px: (u32, u32, Vec<u8>)) -> Result<Vec<u8>> {
-    crate::cli::png_file::encode(px.0, px.1, png::ColorType::Rgb, png::BitDepth::Eight, &px.2)
+    crate::support::png_file::encode(px.0, px.1, png::ColorType::Rgb, png::BitDepth::Eight, &px.2)
 }
 
 /// Every file of the report, with `progress` told of each spec measured.
@@ -277,7 +278,7 @@ pub fn render(catalogue: &Catalogue, progress: &(dyn Fn() + Sync)) -> Result<Fil
                 .with_context(|| format!("the catalogue's {} is not a spec", e.spec))
         })
         .collect::<Result<_>>()?;
-    let measured = crate::par::map(&specs, |s| {
+    let measured = crate::support::par::map(&specs, |s| {
         let m = maps::measure(s);
         progress();
         m
@@ -499,12 +500,12 @@ pub fn write(dir: &Path, files: &Files) -> Result<usize> {
         if std::fs::read(&path).is_ok_and(|old| old == *bytes) {
             continue;
         }
-        crate::atomic::write_atomic(&path, bytes)?;
+        crate::support::atomic::write_atomic(&path, bytes)?;
     }
     let mut text = String::from("# Files written by `unitpack report`.\n");
     for rel in files.keys() {
         text.push_str(&format!("{}\n", rel.display()));
     }
-    crate::atomic::write_atomic(&manifest, text.as_bytes())?;
+    crate::support::atomic::write_atomic(&manifest, text.as_bytes())?;
     Ok(files.len())
 }

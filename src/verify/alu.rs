@@ -10,7 +10,7 @@
 
 use super::tools::{GlslangInput, HlslOpt, glslang_spirv, spirv_opt_dis};
 use crate::codecs::Spec;
-use crate::codecs::core::function::{Emitted, Role};
+use crate::codecs::functions::function::{Emitted, Role};
 use crate::emit::{DEFAULT_PREFIX, Lang, render};
 use crate::model::Kind;
 use crate::model::trace::Ty;
@@ -150,7 +150,12 @@ fn shader(spec: &Spec, e: &Emitted, function: &str) -> Result<String> {
             ("Args".to_string(), args.join(", "), decl)
         }
     };
-    let include = render(&[(spec.clone(), None)], Lang::Glsl, DEFAULT_PREFIX, "");
+    let include = render(
+        &[crate::measure::measured(spec, None)],
+        Lang::Glsl,
+        DEFAULT_PREFIX,
+        "",
+    );
     let prefix = if e.namespace.is_empty() {
         DEFAULT_PREFIX.to_string()
     } else {
@@ -208,9 +213,9 @@ pub fn count(spec: &Spec, function: &str) -> Result<u32> {
     let parts = spec
         .emitted()
         .cpu
-        .into_iter()
+        .iter()
         .find(|f| f.name == function)
-        .map(|f| f.parts);
+        .map(|f| f.parts.clone());
     match parts {
         Some(parts) => parts.iter().map(|p| count_emitted(spec, p)).sum(),
         None => count_emitted(spec, function),
@@ -222,7 +227,7 @@ pub fn count(spec: &Spec, function: &str) -> Result<u32> {
 /// (a precise spec's decoders are its fast spec's) differ only in their names, which no
 /// instruction counts.
 fn count_emitted(spec: &Spec, function: &str) -> Result<u32> {
-    static MEMO: crate::memo::Memo<String, u32> = crate::memo::Memo::new();
+    static MEMO: crate::support::memo::Memo<String, u32> = crate::support::memo::Memo::new();
     let e = spec.emitted();
     let src = shader(spec, &e, function)?;
     let code = e.module.identity(function);
@@ -240,7 +245,7 @@ fn count_emitted(spec: &Spec, function: &str) -> Result<u32> {
 /// function `j`.
 pub fn count_all(specs: &[Spec], functions: &[&str]) -> Result<Vec<Vec<u32>>> {
     // Each thread takes the next spec: one precise search costs as much as dozens of others.
-    crate::par::map(specs, |spec| {
+    crate::support::par::map(specs, |spec| {
         functions.iter().map(|f| count(spec, f)).collect()
     })
     .into_iter()

@@ -17,7 +17,7 @@
 //! by comparing the literal's exact decimal digits with FLT_MAX's exact expansion (an f64
 //! cannot tell `3.4028235e38` from a decimal slightly below FLT_MAX), the rounding with
 //! Rust's correctly rounded parsers (hex floats with an exact binary rounding). The printer
-//! writes its literals by the same rules ([`crate::emit::literal::f32_literal`]).
+//! writes its literals by the same rules ([`crate::emit::lang::literal::f32_literal`]).
 
 use crate::codecs::Spec;
 use crate::emit::Lang;
@@ -253,7 +253,8 @@ pub fn check(lang: Lang, text: &str, model: Option<&HashSet<u32>>) -> Result<usi
 /// The bit patterns of every f32 literal `spec`'s traced functions use, each also negated:
 /// the printer writes a negative literal as the negation of a positive one.
 pub fn model_literals(spec: &Spec) -> HashSet<u32> {
-    let module = spec.emitted().module;
+    let e = spec.emitted();
+    let module = &e.module;
     let values = module.funcs.iter().flat_map(|f| &f.nodes);
     values
         .filter_map(|n| match n.op {

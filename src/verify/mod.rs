@@ -10,7 +10,7 @@
 pub mod gl;
 pub mod gpu;
 /// Lives with the codecs so that the portability report, which needs no GPU, can use it.
-pub use crate::codecs::core::inputs;
+pub use crate::codecs::functions::inputs;
 pub mod alu;
 pub mod browser;
 pub mod literals;
@@ -20,9 +20,9 @@ pub mod tools;
 pub mod web;
 
 use crate::codecs::Spec;
-use crate::codecs::core::function::Emitted;
-use crate::codecs::core::function::first_with_same_code;
-use crate::codecs::core::function::{Eval, Function, Inputs, Width};
+use crate::codecs::functions::function::Emitted;
+use crate::codecs::functions::function::first_with_same_code;
+use crate::codecs::functions::function::{Eval, Function, Inputs, Width};
 use crate::emit::lang::glsl::precise_macro;
 use crate::emit::lang::{KernelFn, Returns};
 use crate::emit::{DEFAULT_PREFIX, Lang, render};
@@ -701,14 +701,15 @@ pub fn whole_includes(
     items: &[(Lang, &str)],
     browser: Option<&browser::Browser>,
 ) -> Vec<Vec<(String, Result<()>)>> {
-    let mut checks: Vec<Vec<(&str, Check)>> = crate::par::map(items, |&(lang, include)| {
-        let mut checks = compiler_checks(lang, include);
-        // Every float literal read back as each compiler reads it (naga and glslang accept
-        // some that Tint and ANGLE do not).
-        let literals = Check::Done(literals::check(lang, include, None).map(drop));
-        checks.push((literal_check_path(lang), literals));
-        checks
-    });
+    let mut checks: Vec<Vec<(&str, Check)>> =
+        crate::support::par::map(items, |&(lang, include)| {
+            let mut checks = compiler_checks(lang, include);
+            // Every float literal read back as each compiler reads it (naga and glslang accept
+            // some that Tint and ANGLE do not).
+            let literals = Check::Done(literals::check(lang, include, None).map(drop));
+            checks.push((literal_check_path(lang), literals));
+            checks
+        });
     // The page compiles one source at a time: ask it from here, in order.
     if let Some(b) = browser {
         for (&(lang, include), checks) in items.iter().zip(&mut checks) {
@@ -901,12 +902,12 @@ pub fn run_on(
     let owners = owners(specs, &emitted);
     // Each spec's include in each language, and the static checks of every include, ahead
     // of the workers: glslang checks many includes in one run ([`whole_includes`]).
-    let includes: Vec<Vec<(Lang, String)>> = crate::par::map(specs, |spec| {
+    let includes: Vec<Vec<(Lang, String)>> = crate::support::par::map(specs, |spec| {
         langs
             .iter()
             .map(|&l| {
                 let include = render(
-                    &[(spec.clone(), None)],
+                    &[crate::measure::measured(spec, None)],
                     l,
                     DEFAULT_PREFIX,
                     "unitpack verify",
@@ -1011,7 +1012,7 @@ pub fn run_on(
 /// runs that one only, no compiler computing with names and the model being the same
 /// traced computation (each spec's whole include is still checked on its own, and its C
 /// driver compiles every function of the header).
-fn owners(specs: &[Spec], emitted: &[Emitted]) -> Vec<Vec<Option<String>>> {
+fn owners(specs: &[Spec], emitted: &[Arc<Emitted>]) -> Vec<Vec<Option<String>>> {
     first_with_same_code(emitted)
         .into_iter()
         .map(|of_spec| {

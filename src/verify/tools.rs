@@ -201,7 +201,7 @@ pub fn glslang_check_many(
         Err(e) => return sources.iter().map(|_| Err(anyhow!("{e:#}"))).collect(),
     };
     let runs: Vec<&[std::path::PathBuf]> = files.chunks(CHECKS_PER_RUN).collect();
-    crate::par::map(&runs, |run| -> Vec<anyhow::Result<()>> {
+    crate::support::par::map(&runs, |run| -> Vec<anyhow::Result<()>> {
         let mut cmd = Command::new(GLSLANG);
         cmd.args(["-S", stage]).args(run.iter());
         match run_tool(&mut cmd, GLSLANG, "glslang-tools") {

@@ -13,7 +13,7 @@
 
 use super::{GL_ITEMS, expected, owners, picks};
 use crate::codecs::Spec;
-use crate::codecs::core::function::Function;
+use crate::codecs::functions::function::Function;
 use crate::emit::{DEFAULT_PREFIX, Lang, render};
 use crate::model::Kind;
 use anyhow::{Context, Result};
@@ -59,8 +59,8 @@ fn function_json(
         input.extend_from_slice(&all[k * f.in_words..][..f.in_words]);
     }
     let want = expected(f, &input);
-    let bound = crate::decode_bound::cached(module, f)
-        .map(|b| b.units * crate::decode_bound::UNIT)
+    let bound = crate::measure::decode_bound::cached(module, f)
+        .map(|b| b.units * crate::measure::figures::UNIT)
         .filter(|_| out_float);
     let head = (HEAD_ITEMS * f.out_words).min(want.len());
     serde_json::json!({
@@ -85,7 +85,7 @@ pub fn page(specs: &[Spec], include: impl Fn(&Spec, String) -> String + Sync) ->
     let emitted: Vec<_> = specs.iter().map(|s| s.emitted()).collect();
     let owners = owners(specs, &emitted);
     let entries: Vec<serde_json::Value> =
-        crate::par::map(&(0..specs.len()).collect::<Vec<_>>(), |&i| {
+        crate::support::par::map(&(0..specs.len()).collect::<Vec<_>>(), |&i| {
             let (spec, e) = (&specs[i], &emitted[i]);
             let ns = if e.namespace.is_empty() {
                 String::new()
@@ -111,7 +111,7 @@ pub fn page(specs: &[Spec], include: impl Fn(&Spec, String) -> String + Sync) ->
                 })
                 .collect();
             let text = render(
-                &[(spec.clone(), None)],
+                &[crate::measure::measured(spec, None)],
                 Lang::Wgsl,
                 DEFAULT_PREFIX,
                 "unitpack verify --web",
@@ -185,7 +185,7 @@ unitpack's model, {WEB_ITEMS} items per function. Nothing is sent anywhere.</p>
 pub fn write(dir: &FsPath, specs: &[Spec]) -> Result<std::path::PathBuf> {
     std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
     let path = dir.join("index.html");
-    crate::atomic::write_atomic(&path, page(specs, |_, t| t).as_bytes())
+    crate::support::atomic::write_atomic(&path, page(specs, |_, t| t).as_bytes())
         .with_context(|| format!("writing {}", path.display()))?;
     Ok(path)
 }

@@ -192,7 +192,7 @@ fn a_map_goes_to_dxt5nm_and_back_texel_for_texel() {
         assert_eq!(rgb(p), expect, "texel {i}: decoded {n:?}");
         let a = vector(rgb(p), 255.0);
         let b = vector(rgb(m), 255.0);
-        worst = worst.max(unitpack::quality::angle_deg(a, b));
+        worst = worst.max(unitpack::measure::quality::angle_deg(a, b));
     }
     // Two 8-bit quantizations of a map whose normals tilt at most about 50°.
     assert!(worst < 3.0, "sample max {worst}° after the round trip");

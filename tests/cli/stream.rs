@@ -335,8 +335,8 @@ fn decode_rejects_codes_wider_than_the_spec() {
 /// Every code `encode` prints fits the spec's width, so `decode` accepts it.
 #[test]
 fn every_encoded_code_fits_the_spec_width() {
-    use unitpack::codecs::core::function::{Inputs, Role};
-    let mut vs = unitpack::sampling::random_unit_vectors(5, 4096, false);
+    use unitpack::codecs::functions::function::{Inputs, Role};
+    let mut vs = unitpack::support::sampling::random_unit_vectors(5, 4096, false);
     vs.extend([
         [0.0, 0.0, -1.0],
         [-1.0, -1.0, -1.0],
@@ -346,7 +346,7 @@ fn every_encoded_code_fits_the_spec_width() {
     for spec in Spec::all().iter().filter(|s| s.info().domain.is_some()) {
         let e = spec.emitted();
         // The code's width: the spec's bits, or a texel layout's whole RGBA8 texel.
-        let width = if unitpack::codecs::toolkit::texel::layout(spec).is_some() {
+        let width = if unitpack::codecs::core::texel::layout(spec).is_some() {
             32
         } else {
             spec.bits()

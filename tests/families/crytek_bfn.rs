@@ -10,7 +10,7 @@ use unitpack::api::Batch;
 use unitpack::codecs::table::crytek_bfn::{SIZE, fitting_table, fitting_texel};
 use unitpack::generator::Generator;
 use unitpack::model::V3;
-use unitpack::sampling::random_unit_vectors;
+use unitpack::support::sampling::random_unit_vectors;
 use unitpack::verify::gpu::Gpu;
 
 const SPEC: &str = "crytek_bfn24";

@@ -7,14 +7,15 @@
 
 use crate::oracles::{bevy, draco, meshopt, unity};
 use unitpack::codecs::Spec;
-use unitpack::codecs::core::function::{Function, Role};
+use unitpack::codecs::functions::function::{Function, Role};
 
 fn function(spec: &str, role: Role) -> Function {
     let spec: Spec = spec.parse().unwrap();
     spec.emitted()
         .functions
-        .into_iter()
+        .iter()
         .find(|f| f.role == role)
+        .cloned()
         .unwrap()
 }
 
@@ -27,16 +28,16 @@ fn run(f: &Function, input: &[u32]) -> Vec<u32> {
 /// Seeded unit vectors, non-unit and tiny ones, the fold and the axes with both zeros,
 /// and the hostile inputs (zero, NaN, infinities).
 fn inputs() -> Vec<[f32; 3]> {
-    let mut v = unitpack::sampling::random_unit_vectors(43, 200_000, false);
+    let mut v = unitpack::support::sampling::random_unit_vectors(43, 200_000, false);
     for k in [-20, -3, 5, 20] {
         let s = 2f32.powi(k);
         v.extend(
-            unitpack::sampling::random_unit_vectors(k as u128 + 100, 2_000, false)
+            unitpack::support::sampling::random_unit_vectors(k as u128 + 100, 2_000, false)
                 .into_iter()
                 .map(|d| d.map(|x| x * s * 1.37)),
         );
     }
-    v.extend(unitpack::codecs::core::inputs::edge_vectors());
+    v.extend(unitpack::codecs::functions::inputs::edge_vectors());
     let parts = [
         0.0f32,
         -0.0,
@@ -292,7 +293,7 @@ fn unity_decoders_are_unitys() {
 /// sample drops by more than a quarter (to 0.71 of it).
 #[test]
 fn unity_nearest_rounding_lowers_the_error() {
-    let vs = unitpack::sampling::random_unit_vectors(5, 100_000, false);
+    let vs = unitpack::support::sampling::random_unit_vectors(5, 100_000, false);
     let mean = |spec: &str| {
         let (enc, dec) = (function(spec, Role::Encode), function(spec, Role::Decode));
         vs.iter()

@@ -8,9 +8,9 @@ use std::f64::consts::{FRAC_PI_2, FRAC_PI_4};
 use unitpack::api::{CpuCodec, EqAreaOct};
 use unitpack::codecs::Codec;
 use unitpack::codecs::octahedral::oct::oct_params;
+use unitpack::measure::figures::VECTOR_SEED;
 use unitpack::model::{V2, V3};
-use unitpack::quality::VECTOR_SEED;
-use unitpack::sampling::random_unit_vectors;
+use unitpack::support::sampling::random_unit_vectors;
 
 /// Sphere → square `[-1, 1]²`, pbrt-v4's `EqualAreaSphereToSquare` (whose `[0, 1]²`
 /// point is this one times ½ plus ½), on the direction normalized in f64.

@@ -4,16 +4,17 @@
 //! the frame families' tests share.
 
 use unitpack::codecs::Spec;
-use unitpack::codecs::core::function::{Function, Role};
-use unitpack::codecs::core::inputs::frames;
+use unitpack::codecs::functions::function::{Function, Role};
+use unitpack::codecs::functions::inputs::frames;
 
 /// The `role` function of `spec`.
 pub fn function(spec: &str, role: Role) -> Function {
     let spec: Spec = spec.parse().unwrap();
     spec.emitted()
         .functions
-        .into_iter()
+        .iter()
         .find(|f| f.role == role)
+        .cloned()
         .unwrap()
 }
 
@@ -61,8 +62,9 @@ pub fn frame_promises(spec: &str, tol: f32) {
         .unwrap()
         .emitted()
         .functions
-        .into_iter()
+        .iter()
         .find(|f| f.name == "decode_tbn")
+        .cloned()
         .unwrap_or_else(|| panic!("{spec}: a decode_tbn"));
     let codes = run(&encode, input);
     let (frames, columns) = (run(&decode, &codes), run(&tbn, &codes));

@@ -6,8 +6,8 @@
 
 use crate::frames::{self, f, frame_promises, run};
 use crate::oracles::godot;
-use unitpack::codecs::core::function::{Function, Role};
-use unitpack::codecs::core::inputs::{codes, frames};
+use unitpack::codecs::functions::function::{Function, Role};
+use unitpack::codecs::functions::inputs::{codes, frames};
 use unitpack::codecs::toolkit::quant::Quant;
 
 fn function(role: Role) -> Function {

@@ -5,8 +5,8 @@
 //! verify path is `verify`'s (tests/verify_gpu.rs), its instruction count the figures'.
 
 use unitpack::codecs::Spec;
-use unitpack::codecs::core::function::{Function, Role};
-use unitpack::sampling::random_unit_vectors;
+use unitpack::codecs::functions::function::{Function, Role};
+use unitpack::support::sampling::random_unit_vectors;
 use unitpack::{Generator, Lang};
 
 /// The families with a lean tier, at the sizes checked here.
@@ -30,8 +30,9 @@ fn encoder(text: &str) -> Function {
     spec(text)
         .emitted()
         .functions
-        .into_iter()
+        .iter()
         .find(|f| f.role == Role::Encode && f.name == "encode")
+        .cloned()
         .unwrap_or_else(|| panic!("{text} has a packed encoder"))
 }
 

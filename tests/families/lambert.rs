@@ -5,8 +5,8 @@
 //! plain and optimized ones — are compared with Lambert's over every 16-bit code.
 
 use unitpack::api::{CpuCodec, Cry3, Lambert, Spheremap};
-use unitpack::quality::angle_deg;
-use unitpack::sampling::random_unit_vectors;
+use unitpack::measure::quality::angle_deg;
+use unitpack::support::sampling::random_unit_vectors;
 
 fn unit(v: [f32; 3]) -> [f64; 3] {
     let v = v.map(f64::from);

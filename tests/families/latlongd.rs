@@ -11,7 +11,7 @@ use unitpack::Lang;
 use unitpack::api::Batch;
 use unitpack::codecs::angular::latlongd::{RINGS, Rings, decode_ring};
 use unitpack::generator::Generator;
-use unitpack::sampling::random_unit_vectors;
+use unitpack::support::sampling::random_unit_vectors;
 use unitpack::verify::gpu::Gpu;
 
 /// `(bits, Nφ, ε in degrees)` as the module documents them.

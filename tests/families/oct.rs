@@ -3,7 +3,7 @@
 //! decoded with the survey's formulas in f64 (an independent decoder, not the model's).
 
 use unitpack::api::{CpuCodec, HemiOct, Oct};
-use unitpack::sampling::random_unit_vectors;
+use unitpack::support::sampling::random_unit_vectors;
 
 /// The two snorm fields of a 2×`half`-bit code, first field lowest.
 fn fields(code: u32, half: u32) -> [i64; 2] {

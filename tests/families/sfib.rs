@@ -7,7 +7,7 @@ use unitpack::codecs::angular::sfib::{GOLDEN, Sfib, longitude};
 use unitpack::codecs::toolkit::exact::{canonical_or_z, fixed_length2, root};
 use unitpack::codecs::toolkit::fixed_decode::fixed_target;
 use unitpack::model::V3;
-use unitpack::sampling::random_unit_vectors;
+use unitpack::support::sampling::random_unit_vectors;
 
 fn decode(c: &Sfib, i: u32) -> [f32; 3] {
     c.index_direction::<f32>(i).to_array()

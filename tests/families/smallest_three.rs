@@ -5,8 +5,8 @@
 //! the rotation's columns. With what every frame codec promises.
 
 use crate::frames::{self, f, frame_promises, run};
-use unitpack::codecs::core::function::{Inputs, Role};
-use unitpack::codecs::core::inputs::{codes, frames};
+use unitpack::codecs::functions::function::{Inputs, Role};
+use unitpack::codecs::functions::inputs::{codes, frames};
 
 type D3 = [f64; 3];
 

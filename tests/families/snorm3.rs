@@ -4,7 +4,7 @@
 
 use unitpack::api::{CpuCodec, Snorm3};
 use unitpack::model::V2;
-use unitpack::sampling::random_unit_vectors;
+use unitpack::support::sampling::random_unit_vectors;
 
 /// The angle (radians) between `a` and `b`, from the cross and dot products (accurate
 /// for small angles, unlike `acos`).

@@ -11,8 +11,8 @@ use unitpack::Lang;
 use unitpack::api::{Batch, SphericalLut};
 use unitpack::codecs::Spec;
 use unitpack::generator::Generator;
-use unitpack::quality::measure;
-use unitpack::sampling::random_unit_vectors;
+use unitpack::measure::quality::measure;
+use unitpack::support::sampling::random_unit_vectors;
 use unitpack::verify::gpu::Gpu;
 
 const LUTS: [(SphericalLut, &str); 2] = [

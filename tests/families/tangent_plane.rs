@@ -5,8 +5,8 @@
 //! stored direction normalized. With what every frame codec promises.
 
 use crate::frames::{self, f, frame_promises, run};
-use unitpack::codecs::core::function::Role;
-use unitpack::codecs::core::inputs::{codes, frames};
+use unitpack::codecs::functions::function::Role;
+use unitpack::codecs::functions::inputs::{codes, frames};
 
 /// A spec's layout: oct bits per axis, turn bits, whether the turn is the diamond, words.
 struct Layout {
@@ -196,7 +196,7 @@ fn decoders_compute_the_definition() {
     for l in LAYOUTS.iter().filter(|l| !l.spec.ends_with('p')) {
         let decode = frames::function(l.spec, Role::Decode);
         let q = decode.inputs.clone();
-        let unitpack::codecs::core::function::Inputs::Codes(q) = q else {
+        let unitpack::codecs::functions::function::Inputs::Codes(q) = q else {
             panic!("{}: a packed decoder", l.spec)
         };
         let input = codes(&q, l.words);

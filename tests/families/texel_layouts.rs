@@ -8,9 +8,9 @@
 use unitpack::Lang;
 use unitpack::api::Batch;
 use unitpack::codecs::Spec;
-use unitpack::codecs::core::function::Function;
+use unitpack::codecs::functions::function::Function;
 use unitpack::generator::Generator;
-use unitpack::sampling::random_unit_vectors;
+use unitpack::support::sampling::random_unit_vectors;
 use unitpack::verify::gpu::Gpu;
 
 const FAMILIES: [&str; 5] = [
@@ -47,8 +47,9 @@ fn function(spec: &str, name: &str) -> Function {
     let s: Spec = spec.parse().unwrap();
     s.emitted()
         .functions
-        .into_iter()
+        .iter()
         .find(|f| f.name == name)
+        .cloned()
         .unwrap_or_else(|| panic!("{spec} has no {name}"))
 }
 
@@ -322,7 +323,7 @@ fn decoders_read_their_channels_and_precise_is_nearer() {
 }
 
 fn angle(a: [f32; 3], b: [f32; 3]) -> f64 {
-    unitpack::quality::angle_deg(a, b).to_radians()
+    unitpack::measure::quality::angle_deg(a, b).to_radians()
 }
 
 /// xra's one decoder serves both of its encoders: the DXT1 texel (x in R, A = 1) and

@@ -1,11 +1,12 @@
-//! Survey Table 1 (Cigolle et al. 2014) reproduced with 2^20 seeded vectors (the survey's method, `src/quality.rs`):
+//! Survey Table 1 (Cigolle et al. 2014) reproduced with 2^20 seeded vectors (the survey's method, `src/measure/quality.rs`):
 //! mean error within 2 %, max error within 5 % of the published figures. The rows we do
 //! not match that way are asserted by what docs/design/survey.md's "Table 1 rows we do not
 //! reproduce" says of them.
 
 use unitpack::codecs::Spec;
-use unitpack::quality::{ErrorStats, VECTOR_SEED, angle_deg, component_mse};
-use unitpack::sampling::random_unit_vectors;
+use unitpack::measure::figures::{ErrorStats, VECTOR_SEED};
+use unitpack::measure::quality::{angle_deg, component_mse};
+use unitpack::support::sampling::random_unit_vectors;
 
 const SAMPLES: usize = 1 << 20;
 

@@ -17,12 +17,13 @@
 //! input's code, so it encodes its own smaller sample of the same seeded vectors.
 
 use unitpack::codecs::Spec;
-use unitpack::codecs::core::codec::Domain;
-use unitpack::codecs::core::function::{Function, Inputs, Role};
+use unitpack::codecs::core::info::Domain;
+use unitpack::codecs::functions::function::{Function, Inputs, Role};
 use unitpack::codecs::toolkit::quant::{Quant, field_offsets};
-use unitpack::doc_tables::codec_specs;
-use unitpack::quality::{VECTOR_SEED, angle_deg};
-use unitpack::sampling::random_unit_vectors;
+use unitpack::measure::figures::VECTOR_SEED;
+use unitpack::measure::quality::angle_deg;
+use unitpack::report::doc_tables::codec_specs;
+use unitpack::support::sampling::random_unit_vectors;
 
 /// Vectors per spec: the first ones of the README's sample.
 const SAMPLES: usize = 1 << 13;
@@ -172,7 +173,7 @@ fn every_input_lies_within_its_codes_neighbours_reach() {
         .filter(|s| !encoder_and_decoder(s).2.contains(&Quant::Single))
         .collect();
     assert!(specs.len() > 200, "{}", specs.len());
-    let failures: Vec<String> = unitpack::par::map(&specs, |spec| {
+    let failures: Vec<String> = unitpack::support::par::map(&specs, |spec| {
         let (enc, dec, q, hemisphere) = encoder_and_decoder(spec);
         let c = cover(&enc, &dec, &q, hemisphere);
         let mut out = Vec::new();

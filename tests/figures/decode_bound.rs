@@ -4,11 +4,12 @@
 //! decoder's output a good part of its bound.
 
 use unitpack::codecs::Spec;
-use unitpack::codecs::core::function::{Function, Role};
-use unitpack::codecs::core::inputs::generate;
-use unitpack::decode_bound::{UNIT, of};
+use unitpack::codecs::functions::function::{Function, Role};
+use unitpack::codecs::functions::inputs::generate;
+use unitpack::measure::decode_bound::of;
+use unitpack::measure::figures::UNIT;
+use unitpack::measure::portability::{Functions, Options, run};
 use unitpack::model::deviant::{Class, Deviation, Mode, begin_item, with};
-use unitpack::portability::{Functions, Options, run};
 
 const MODES: [Mode; 5] = [
     Mode::Seeded(1),
@@ -21,8 +22,9 @@ const MODES: [Mode; 5] = [
 fn decoders(spec: &Spec) -> Vec<Function> {
     spec.emitted()
         .functions
-        .into_iter()
+        .iter()
         .filter(|f| matches!(f.role, Role::Decode | Role::DecodeFloat))
+        .cloned()
         .collect()
 }
 

@@ -11,11 +11,12 @@ mod tables;
 
 use std::sync::OnceLock;
 use unitpack::codecs::Spec;
-use unitpack::doc_tables::{README_SAMPLES, codec_specs};
-use unitpack::quality::{ErrorStats, measure_all_once};
+use unitpack::measure::figures::ErrorStats;
+use unitpack::measure::quality::measure_all_once;
+use unitpack::report::doc_tables::{README_SAMPLES, codec_specs};
 
 /// The error statistics of `specs` over `samples` seeded vectors, as
-/// [`unitpack::quality::measure`] gives them. The first caller measures every codec spec
+/// [`unitpack::measure::quality::measure`] gives them. The first caller measures every codec spec
 /// at the documented tables' sample size on all cores while the others wait, so that no test
 /// measures a spec another one is measuring.
 fn stats(specs: &[Spec], samples: usize) -> Vec<Option<ErrorStats>> {

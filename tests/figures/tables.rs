@@ -11,7 +11,7 @@
 
 use std::collections::BTreeMap;
 use std::sync::OnceLock;
-use unitpack::doc_tables::{
+use unitpack::report::doc_tables::{
     README_SAMPLES, REFRESH_COMMAND, block, bound_table, catalogue_table, codec_specs, error_table,
     frame_error_table, portability_cost_table, refreshing, replace_block, seed_methods_table,
     tier_table,
@@ -43,7 +43,7 @@ fn counts() -> &'static Counts {
             for (f, n) in FUNCTIONS.iter().zip(c) {
                 all.insert(format!("{} {f}", spec.id()), *n);
             }
-            for f in spec.emitted().functions {
+            for f in &spec.emitted().functions {
                 if !FUNCTIONS.contains(&f.name) {
                     let n = count(spec, f.name)
                         .unwrap_or_else(|e| panic!("cannot count {spec} {}: {e:#}", f.name));

@@ -4,9 +4,9 @@
 
 use unitpack::Spec;
 use unitpack::choice::filtering::{self, Filtering, errors};
-use unitpack::codecs::core::function::{Emitted, Function, Role};
+use unitpack::codecs::functions::function::{Emitted, Function, Role};
 
-fn emitted(spec: &str) -> Emitted {
+fn emitted(spec: &str) -> std::sync::Arc<Emitted> {
     spec.parse::<Spec>().unwrap().emitted()
 }
 
@@ -103,7 +103,7 @@ fn every_codec_with_a_float_form_has_filtering_figures() {
     let catalogue = unitpack::choice::catalogue::Catalogue::load();
     assert_eq!(
         catalogue.specs.len(),
-        unitpack::doc_tables::codec_specs().len()
+        unitpack::report::doc_tables::codec_specs().len()
     );
     for e in &catalogue.specs {
         assert!(e.filtering.is_some(), "{} has no filtering figures", e.spec);

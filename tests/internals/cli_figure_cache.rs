@@ -1,6 +1,6 @@
 use unitpack::cli::figure_cache::*;
-use unitpack::decode_bound::Bound;
-use unitpack::quality::ErrorStats;
+use unitpack::measure::figures::Bound;
+use unitpack::measure::figures::ErrorStats;
 
 /// What is written reads back as the same figures, bit for bit.
 #[test]

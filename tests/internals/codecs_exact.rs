@@ -7,7 +7,7 @@ use unitpack::model::V3;
 /// for seeded random directions and the axes.
 #[test]
 fn unit_on_grid_rounds_exactly() {
-    let mut vs = unitpack::sampling::random_unit_vectors(3, 100_000, false);
+    let mut vs = unitpack::support::sampling::random_unit_vectors(3, 100_000, false);
     vs.extend([
         [1.0, 0.0, 0.0],
         [0.0, -1.0, 0.0],

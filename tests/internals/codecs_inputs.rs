@@ -1,4 +1,4 @@
-use unitpack::codecs::core::inputs::*;
+use unitpack::codecs::functions::inputs::*;
 use unitpack::codecs::toolkit::quant::{Quant, field_offsets};
 
 /// An RGBA8 texel's sweep holds every (G, A) pair with R = B = 255 (dxt5nm's and

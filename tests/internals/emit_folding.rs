@@ -9,7 +9,7 @@ use naga::{Expression, Handle, Statement};
 use std::collections::HashMap;
 use unitpack::codecs::Spec;
 use unitpack::emit::Lang;
-use unitpack::emit::printer::{Printed, Style, print_as};
+use unitpack::emit::lang::printer::{Printed, Style, print_as};
 
 /// Canonical ids of operation graphs, shared by the modules compared.
 #[derive(Default)]

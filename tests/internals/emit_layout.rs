@@ -1,6 +1,6 @@
 //! The layout pass: long lines broken where a reader expects, comments filled.
 
-use unitpack::emit::layout::{WIDTH, wrap};
+use unitpack::emit::lang::layout::{WIDTH, wrap};
 
 fn columns(s: &str) -> usize {
     s.chars().count()

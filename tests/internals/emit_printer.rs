@@ -1,5 +1,5 @@
-use unitpack::emit::literal::f32_literal;
-use unitpack::emit::printer::*;
+use unitpack::emit::lang::literal::f32_literal;
+use unitpack::emit::lang::printer::*;
 
 /// A value named after a reserved word is printed under another name.
 #[test]

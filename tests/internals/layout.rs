@@ -28,8 +28,8 @@ fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
 }
 
 /// `a::b` for src/a/b.rs and src/a/b/mod.rs; "" for lib.rs and main.rs.
-fn module_of(file: &Path) -> Vec<String> {
-    let rel = file.strip_prefix(src()).unwrap().with_extension("");
+fn module_of(root: &Path, file: &Path) -> Vec<String> {
+    let rel = file.strip_prefix(root).unwrap().with_extension("");
     let mut parts: Vec<String> = rel
         .components()
         .map(|c| c.as_os_str().to_string_lossy().into_owned())
@@ -126,29 +126,49 @@ fn paths(code: &str, module: &[String]) -> Vec<Vec<String>> {
     out
 }
 
-fn import_graph() -> BTreeMap<String, BTreeSet<String>> {
+type Graph = BTreeMap<String, BTreeSet<String>>;
+
+/// The modules under `root` and the modules each names, and the same between folders:
+/// a folder (`codecs/core`, `emit`, "" for the top of src/) names another where one of its
+/// files names a module of the other, an ancestor's module included (a family naming the
+/// registry in `codecs/mod.rs` climbs back up as surely as a sibling's module).
+fn import_graphs(root: &Path) -> (Graph, Graph) {
     let mut files = Vec::new();
-    rust_files(&src(), &mut files);
-    let modules: BTreeSet<Vec<String>> = files.iter().map(|f| module_of(f)).collect();
-    let mut graph: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
+    rust_files(root, &mut files);
+    let modules: BTreeMap<Vec<String>, &PathBuf> =
+        files.iter().map(|f| (module_of(root, f), f)).collect();
+    let folder = |f: &Path| {
+        let d = f.parent().unwrap().strip_prefix(root).unwrap();
+        d.to_string_lossy().replace('\\', "/")
+    };
+    let mut graph: Graph = BTreeMap::new();
+    let mut folders: Graph = BTreeMap::new();
     for f in &files {
-        let m = module_of(f);
+        let m = module_of(root, f);
         let code = code_only(&std::fs::read_to_string(f).unwrap());
         let deps = graph.entry(m.join("::")).or_default();
         for p in paths(&code, &m) {
             let Some(target) = (1..=p.len())
                 .rev()
                 .map(|n| p[..n].to_vec())
-                .find(|c| modules.contains(c))
+                .find(|c| modules.contains_key(c))
             else {
                 continue;
             };
             if target != m && !m.starts_with(&target) {
                 deps.insert(target.join("::"));
             }
+            let (from, to) = (folder(f), folder(modules[&target]));
+            if from != to {
+                folders.entry(from).or_default().insert(to);
+            }
         }
     }
-    graph
+    (graph, folders)
+}
+
+fn import_graph() -> Graph {
+    import_graphs(&src()).0
 }
 
 /// Tarjan's strongly connected components of more than one module.
@@ -211,9 +231,70 @@ fn no_import_circles_among_the_modules_of_src() {
     let graph = import_graph();
     // The reader sees the edges the tree has: a sample that must be there.
     assert!(graph["codecs::octahedral::oct"].contains("codecs::core::codec"));
-    assert!(graph["quality"].contains("sampling"));
+    assert!(graph["measure::quality"].contains("support::sampling"));
     let found = circles(&graph);
     assert!(found.is_empty(), "import circles in src/: {found:?}");
+}
+
+/// Layers only point down: no two folders of src/ name each other, through any chain.
+/// Following a spec from the command line to its emitted text never returns to a folder
+/// it has left: emission prints the figures it is handed, naming nothing in `measure/`
+/// but the plain record of them (`measure::figures`), and no codec names `emit/`.
+#[test]
+fn no_import_circles_among_the_folders_of_src() {
+    let (files, folders) = import_graphs(&src());
+    assert!(folders["codecs/octahedral"].contains("codecs/core"));
+    let found = circles(&folders);
+    assert!(found.is_empty(), "folder circles in src/: {found:?}");
+    assert!(files["emit::docs"].contains("measure::figures"));
+    for (from, to) in files
+        .iter()
+        .flat_map(|(a, b)| b.iter().map(move |b| (a, b)))
+    {
+        assert!(
+            !(from.starts_with("emit") && to.starts_with("measure") && to != "measure::figures"),
+            "{from} names {to}: emission prints figures measured before it"
+        );
+    }
+    for (from, to) in folders
+        .iter()
+        .flat_map(|(a, b)| b.iter().map(move |b| (a, b)))
+    {
+        assert!(
+            !(from.starts_with("codecs") && (to.starts_with("emit") || to.starts_with("measure"))),
+            "{from} names {to}: a codec knows nothing of how it is printed or measured"
+        );
+        let floor = from.starts_with("support") || (from.starts_with("model") && to != "support");
+        assert!(
+            !floor,
+            "{from} names {to}: support/ and model/ are the floor"
+        );
+    }
+}
+
+/// The folder check fails on a planted circle that no pair of files shows: `a/x.rs` names
+/// `b::y`, and `b/z.rs` names `a::w`.
+#[test]
+fn the_folder_check_finds_a_planted_circle() {
+    let root = std::env::temp_dir().join(format!("unitpack-layout-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&root);
+    for (file, text) in [
+        ("lib.rs", "pub mod a; pub mod b;"),
+        ("a/mod.rs", "pub mod w; pub mod x;"),
+        ("a/w.rs", ""),
+        ("a/x.rs", "use crate::b::y::Y;"),
+        ("b/mod.rs", "pub mod y; pub mod z;"),
+        ("b/y.rs", "pub struct Y;"),
+        ("b/z.rs", "use crate::a::w;"),
+    ] {
+        let path = root.join(file);
+        std::fs::create_dir_all(path.parent().unwrap()).unwrap();
+        std::fs::write(path, text).unwrap();
+    }
+    let (files, folders) = import_graphs(&root);
+    std::fs::remove_dir_all(&root).unwrap();
+    assert!(circles(&files).is_empty(), "no file circle: {files:?}");
+    assert_eq!(circles(&folders), vec![vec!["a", "b"]]);
 }
 
 #[test]

@@ -1,6 +1,6 @@
-use unitpack::codecs::core::function::Role;
+use unitpack::codecs::functions::function::Role;
+use unitpack::measure::portability::*;
 use unitpack::model::deviant::{Class, Mode};
-use unitpack::portability::*;
 
 fn row(class: Class, changed: usize) -> Row {
     Row {

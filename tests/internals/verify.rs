@@ -1,5 +1,6 @@
 use unitpack::codecs::Spec;
 use unitpack::emit::{DEFAULT_PREFIX, Lang, render};
+use unitpack::measure::measured;
 use unitpack::verify::*;
 
 /// Outputs compared chunk by chunk report each mismatch with its own item's input,
@@ -90,7 +91,7 @@ fn whole_include_checks_uncalled_functions() {
     }
     let spec: Spec = "oct16".parse().expect("spec");
     for lang in [Lang::Wgsl, Lang::Glsl, Lang::Hlsl] {
-        let include = render(&[(spec.clone(), None)], lang, DEFAULT_PREFIX, "test");
+        let include = render(&[measured(&spec, None)], lang, DEFAULT_PREFIX, "test");
         for (path, r) in whole_include(lang, &include) {
             assert!(r.is_ok(), "{path}: {r:?}");
         }
@@ -108,7 +109,7 @@ fn whole_includes_keep_each_error_with_its_include() {
             [Lang::Wgsl, Lang::Glsl, Lang::Hlsl].map(|l| {
                 (
                     l,
-                    render(&[(spec.clone(), None)], l, DEFAULT_PREFIX, "test"),
+                    render(&[measured(&spec, None)], l, DEFAULT_PREFIX, "test"),
                 )
             })
         })
@@ -204,22 +205,22 @@ fn naga_glsl_out_needs_lane_wise_integer_selects() {
         "spherical_lut16p:lut=matched",
     ] {
         let spec: Spec = spec.parse().expect("spec");
-        let include = render(&[(spec.clone(), None)], Lang::Wgsl, DEFAULT_PREFIX, "test");
+        let include = render(&[measured(&spec, None)], Lang::Wgsl, DEFAULT_PREFIX, "test");
         let (path, r) = glsl_out(&include);
         assert!(r.is_ok(), "{spec} {path}: {r:?}");
     }
 }
 
-/// A chained function's two steps ([`unitpack::codecs::core::function::Stages`]), which
+/// A chained function's two steps ([`unitpack::codecs::functions::function::Stages`]), which
 /// `verify` evaluates apart so that functions beginning with the same step run it once,
 /// compute its model's bits; a precise spec's encoders all begin with the same search,
 /// and a frame's TBN decoder with its decoder.
 #[test]
 fn chained_steps_compute_their_functions_bits() {
     use std::sync::Arc;
-    use unitpack::codecs::core::inputs;
+    use unitpack::codecs::functions::inputs;
     let (mut staged, mut shared) = (0, 0);
-    for spec in unitpack::doc_tables::codec_specs() {
+    for spec in unitpack::report::doc_tables::codec_specs() {
         let e = spec.emitted();
         for f in &e.functions {
             let Some(s) = &f.stages else { continue };

@@ -22,7 +22,8 @@
 //! the input alone on every path; the decoder uses [`crate::codecs::toolkit::trig`], never a builtin.
 
 use crate::model::num::helper;
-use crate::codecs::core::codec::{Codec, Domain};
+use crate::codecs::core::codec::Codec;
+use crate::codecs::core::info::Domain;
 use crate::codecs::toolkit::exact::canonical_or_z;
 use crate::codecs::core::info::{Info, Sizes, FloatForm, seam};
 use crate::codecs::core::codec_family::CodecFamily;

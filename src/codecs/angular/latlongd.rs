@@ -47,15 +47,16 @@
 //! words above `2^24` by [`float_of`], so every implementation computes the same.
 
 use crate::model::num::helper;
-use crate::codecs::core::codec::{Domain, unpack};
+use crate::codecs::core::codec::unpack;
+use crate::codecs::core::info::Domain;
 use crate::codecs::toolkit::exact::{canonical_or_z, fixed_ratio, float_of, root_of};
 use crate::codecs::core::info::{Info, Sizes, FloatForm, seam};
-use crate::codecs::core::spec::{Family, Table, TableFormat};
+use crate::codecs::core::spec::{Family, Table, TableFormat, Tracing};
 use crate::codecs::toolkit::fixed_trig::{self, ONE};
-use crate::codecs::core::decode_boxes::fetched_range;
-use crate::codecs::core::function::{Emitted, Enclose, Extra, Function, Inputs, Role, WordsMap};
+use crate::codecs::functions::decode_boxes::fetched_range;
+use crate::codecs::functions::function::{Emitted, Enclose, Extra, Function, Inputs, Role, WordsMap};
 use crate::codecs::core::pipeline::through_table;
-use crate::codecs::core::words::generic_function;
+use crate::codecs::functions::words::generic_function;
 use crate::codecs::angular::latlong::grid_direction;
 use crate::codecs::toolkit::quant::Quant;
 use crate::codecs::core::spec::Spec;
@@ -98,7 +99,7 @@ impl Family for LatlongDFamily {
         // Its encoder is latlong's; the ring table serves the decoder only.
         false
     }
-    fn emitted(&self, spec: &Spec) -> Emitted {
+    fn emitted(&self, spec: &Spec, _: Tracing) -> Emitted {
         emitted(&spec.id(), spec.bits())
     }
     fn tables(&self, spec: &Spec) -> Vec<Table> {

@@ -39,7 +39,8 @@
 //! floats (to `2^-18`).
 
 use crate::model::num::helper;
-use crate::codecs::core::codec::{Codec, Domain};
+use crate::codecs::core::codec::Codec;
+use crate::codecs::core::info::Domain;
 use crate::codecs::core::info::{Info, Sizes, FloatForm};
 use crate::codecs::core::codec_family::CodecFamily;
 use crate::codecs::core::pipeline::codec_functions;

@@ -4,7 +4,8 @@
 //! conditioned near the poles, where acos loses half its digits.
 
 use crate::model::num::helper;
-use crate::codecs::core::codec::{Codec, Domain};
+use crate::codecs::core::codec::Codec;
+use crate::codecs::core::info::Domain;
 use crate::codecs::toolkit::exact::{canonical_or_z, fixed_length2, fixed_length2_xy, root, root_of};
 use crate::codecs::toolkit::fixed_decode::{fixed_target, nearest_decoded, search_doc};
 use crate::codecs::toolkit::fixed_trig::{self, FINE, ONE};

@@ -5,7 +5,8 @@
 //! never a builtin.
 
 use crate::model::num::helper;
-use crate::codecs::core::codec::{Codec, Domain};
+use crate::codecs::core::codec::Codec;
+use crate::codecs::core::info::Domain;
 use crate::codecs::toolkit::exact::{canonical_or_z, fixed_length2, fixed_root, length2, root, unorm_sqrt_ratio};
 use crate::codecs::core::info::{Info, Sizes, FloatForm, seam};
 use crate::codecs::core::codec_family::CodecFamily;

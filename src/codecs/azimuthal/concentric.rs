@@ -16,7 +16,8 @@
 //! point.
 
 use crate::model::num::helper;
-use crate::codecs::core::codec::{Codec, Domain};
+use crate::codecs::core::codec::Codec;
+use crate::codecs::core::info::Domain;
 use crate::codecs::azimuthal::disk::{DiskProjection, Folded, disk_fields, disk_quants, unfold};
 use crate::codecs::toolkit::exact::decided;
 use crate::codecs::core::info::Info;

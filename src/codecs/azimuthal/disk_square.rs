@@ -9,12 +9,13 @@ use super::ellipse::Ellipse;
 use super::eqarea::HemiEqArea;
 use super::eqdist::HemiEqDist;
 use super::stereo::HemiStereo;
-use crate::codecs::core::codec::{Codec, Domain};
+use crate::codecs::core::codec::Codec;
+use crate::codecs::core::info::Domain;
 use crate::codecs::core::info::{Info, Sizes, FloatForm, seam};
 use crate::codecs::core::spec::Family;
-use crate::codecs::core::function::Emitted;
+use crate::codecs::functions::function::Emitted;
 use crate::codecs::core::pipeline::codec_functions;
-use crate::codecs::core::spec::{Spec, SpecError};
+use crate::codecs::core::spec::{Spec, SpecError, Tracing};
 
 /// A projection composed with a square map: the family's description and its functions,
 /// traced from the combination's codec type.
@@ -31,7 +32,7 @@ impl Family for DiskSquare {
     fn precise(&self) -> bool {
         self.precise
     }
-    fn emitted(&self, spec: &Spec) -> Emitted {
+    fn emitted(&self, spec: &Spec, _: Tracing) -> Emitted {
         (self.emitted)(spec)
     }
 }

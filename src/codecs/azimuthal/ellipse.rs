@@ -25,7 +25,8 @@
 //! corners the inverse is too ill-conditioned for a float estimate to land within one
 //! code. The decoder is the map itself, then the projection's lift.
 
-use crate::codecs::core::codec::{Codec, Domain};
+use crate::codecs::core::codec::Codec;
+use crate::codecs::core::info::Domain;
 use crate::codecs::azimuthal::disk::{DiskProjection, Folded, Radius, disk_fields, disk_quants, unfold};
 use crate::codecs::toolkit::exact::{bisected, one_if, settled_sum};
 use crate::codecs::core::info::Info;

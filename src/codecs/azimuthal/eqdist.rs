@@ -10,7 +10,8 @@
 //! The angle comes from the model's trigonometry, never a builtin.
 
 use crate::model::num::helper;
-use crate::codecs::core::codec::{Codec, Domain};
+use crate::codecs::core::codec::Codec;
+use crate::codecs::core::info::Domain;
 use crate::codecs::azimuthal::disk::{
     DiskProjection, Folded, Radius, disk_fields, disk_quants, fixed_disk_point,
     nearest_disk_codes, unfold,

@@ -2,7 +2,8 @@
 //! unorm×2: `enc = xy / sqrt(8z + 8) + 0.5`. The seed's encoder assumed unit input (its
 //! own erratum); this one normalizes first.
 
-use crate::codecs::core::codec::{Codec, Domain};
+use crate::codecs::core::codec::Codec;
+use crate::codecs::core::info::Domain;
 use crate::codecs::toolkit::exact::{OnePlusZ, decided, fixed_root, float_of, past_root_ratio};
 use crate::codecs::toolkit::fixed_decode::{
     BITS, ONE, fixed, fixed_target, nearest_decoded, odd_square_quarter, search_doc,

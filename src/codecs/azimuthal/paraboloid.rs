@@ -9,14 +9,15 @@
 //! `p = (x, y)·t = (x, y) / (z/2 + sqrt(x² + y² + (z/2)²))` — the stereographic point
 //! ([`crate::codecs::azimuthal::xy_stereo`]) of `(x, y, z/2)`, a quotient the codes are decided from exactly.
 
-use crate::codecs::core::codec::{Codec, Domain, above_horizon};
+use crate::codecs::core::codec::{Codec, above_horizon};
+use crate::codecs::core::info::Domain;
 use crate::codecs::toolkit::exact::{
     canonical_or_z, fixed_length2, fixed_ratio, fixed_root, floor_ratio_code, ratio_code, root,
     root_of,
 };
 use crate::codecs::core::info::{Info, Sizes, FloatForm, seam};
 use crate::codecs::core::codec_family::CodecFamily;
-use crate::codecs::toolkit::texel::{self, TexelCodec, texel_variants};
+use crate::codecs::core::texel::{self, TexelCodec, texel_variants};
 use crate::codecs::toolkit::fixed_decode::{
     BITS, ONE, fixed, fixed_length2_2d, fixed_square, fixed_target, nearest_decoded, search_doc,
 };

@@ -10,9 +10,9 @@
 //! know; with `pd = 0` it is the paraboloid decode up to that rounding.
 
 use crate::codecs::core::info::{Info, Sizes, FloatForm};
-use crate::codecs::core::spec::Family;
-use crate::codecs::core::function::{Emitted, Inputs, Role};
-use crate::codecs::core::words::generic_function;
+use crate::codecs::core::spec::{Family, Tracing};
+use crate::codecs::functions::function::{Emitted, Inputs, Role};
+use crate::codecs::functions::words::generic_function;
 use crate::codecs::toolkit::quant::Quant;
 use crate::codecs::core::spec::Spec;
 use crate::model::trace::{Tf, define, trace_module};
@@ -45,7 +45,7 @@ impl Family for ParaboloidPdFamily {
         // A combination of two paraboloid fields, with no encoder of its own to search.
         false
     }
-    fn emitted(&self, _spec: &Spec) -> Emitted {
+    fn emitted(&self, _spec: &Spec, _: Tracing) -> Emitted {
         let module = trace_module(|| {
             define(NAME, &["pn", "pd"], |(pn, pd): (V2<Tf>, V2<Tf>)| {
                 combine(pn, pd)

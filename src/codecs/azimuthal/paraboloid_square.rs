@@ -16,11 +16,12 @@
 //! computes the same point and the same codes.
 
 use crate::model::num::helper;
-use crate::codecs::core::codec::{Codec, Domain, above_horizon};
+use crate::codecs::core::codec::{Codec, above_horizon};
+use crate::codecs::core::info::Domain;
 use crate::codecs::toolkit::exact::{canonical_or_z, fixed_length2, fixed_ratio, fixed_root, root};
 use crate::codecs::core::info::{Info, Sizes, FloatForm, seam};
 use crate::codecs::core::codec_family::CodecFamily;
-use crate::codecs::toolkit::texel::{self, TexelCodec, texel_variants};
+use crate::codecs::core::texel::{self, TexelCodec, texel_variants};
 use crate::codecs::toolkit::fixed_decode::{
     BITS, ONE, fixed, fixed_mul, fixed_square, fixed_target, nearest_decoded, search_doc,
 };

@@ -9,7 +9,7 @@
 //! direction in other orders of operations. `tests/families/lambert.rs` checks the seed's
 //! encoder formulas against each other and the shared codes.
 
-use crate::codecs::core::codec::Domain;
+use crate::codecs::core::info::Domain;
 use crate::codecs::core::info::{Info, OptDesc, OptKind, Sizes, FloatForm, seam};
 use crate::codecs::core::codec_family::CodecFamily;
 use crate::codecs::toolkit::fixed_decode::{BITS, search_doc};

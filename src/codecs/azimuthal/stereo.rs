@@ -3,7 +3,8 @@
 //! unorm `p·0.5 + 0.5`, and one bit for the sign of `z`, laid out as [`crate::codecs::azimuthal::disk`]
 //! says (stereo16: x bits 0–7, y bits 8–14, the hemisphere bit 15).
 
-use crate::codecs::core::codec::{Codec, Domain};
+use crate::codecs::core::codec::Codec;
+use crate::codecs::core::info::Domain;
 use crate::codecs::azimuthal::disk::{
     DiskProjection, Folded, Radius, disk_fields, disk_quants, fixed_disk_point,
     nearest_disk_codes, unfold,

@@ -4,7 +4,8 @@
 //! `2·atan(scale)` from +Z (121.4° at the default) fall outside it and are clamped to the
 //! square's edge, so this codec is lossy there by design.
 
-use crate::codecs::core::codec::{Codec, Domain};
+use crate::codecs::core::codec::Codec;
+use crate::codecs::core::info::Domain;
 use crate::codecs::toolkit::exact::{OnePlusZ, decided, fixed_ratio, float_of, one_if};
 use crate::codecs::toolkit::fixed_decode::{BITS, fixed_target, nearest_decoded, odd_square_quarter, search_doc};
 use crate::codecs::toolkit::quant::{Quant, Quants};

@@ -6,11 +6,12 @@
 //! code's cell is locally a scaled square on the sphere), so the precise encoder rarely
 //! finds a nearer code than rounding does.
 
-use crate::codecs::core::codec::{Codec, Domain, above_horizon};
+use crate::codecs::core::codec::{Codec, above_horizon};
+use crate::codecs::core::info::Domain;
 use crate::codecs::toolkit::exact::{canonical_or_z, fixed_length2, fixed_ratio, floor_ratio_code, ratio_code, root};
 use crate::codecs::core::info::{Info, Sizes, FloatForm, seam};
 use crate::codecs::core::codec_family::CodecFamily;
-use crate::codecs::toolkit::texel::{self, TexelCodec, texel_variants};
+use crate::codecs::core::texel::{self, TexelCodec, texel_variants};
 use crate::codecs::toolkit::fixed_decode::{fixed_length2_2d, BITS, ONE, fixed, fixed_target, nearest_decoded, search_doc};
 use crate::codecs::toolkit::quant::{Quant, Quants, signed_code, zero_code};
 use crate::codecs::core::spec::SpecError;

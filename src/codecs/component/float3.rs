@@ -7,11 +7,12 @@
 //!   multiple of `2^-24` (f32's spacing in `[½, 1)`) decided from integers, so that every
 //!   implementation writes the same bits; the survey's baseline.
 
-use crate::codecs::core::codec::{Codec, Domain, unit_or_z};
+use crate::codecs::core::codec::{Codec, unit_or_z};
+use crate::codecs::core::info::Domain;
 use crate::codecs::toolkit::exact::{canonical, canonical_or_z, half_sqrt_ratio, length2, unit_on_grid};
 use crate::codecs::core::info::{Info, Sizes, FloatForm, seam};
-use crate::codecs::core::spec::Family;
-use crate::codecs::core::function::Emitted;
+use crate::codecs::core::spec::{Family, Tracing};
+use crate::codecs::functions::function::Emitted;
 use crate::codecs::core::pipeline::codec_functions;
 use crate::codecs::toolkit::quant::{Quant, Quants};
 use crate::codecs::core::spec::Spec;
@@ -44,7 +45,7 @@ impl Family for Float3Family {
     fn precise(&self) -> bool {
         Float16x3::EXACT_SEARCH && Float32x3::EXACT_SEARCH
     }
-    fn emitted(&self, spec: &Spec) -> Emitted {
+    fn emitted(&self, spec: &Spec, _: Tracing) -> Emitted {
         match spec.bits() {
             48 => codec_functions(spec, Float16x3),
             _ => codec_functions(spec, Float32x3),

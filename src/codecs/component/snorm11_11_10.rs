@@ -1,10 +1,10 @@
 //! snorm11_11_10 (survey Table 1): [`Snorm3`] with x and y in 11 bits and z in 10, the
 //! three fields of one 32-bit word, x in the lowest bits (bits 0–10 x, 11–21 y, 22–31 z).
 
-use crate::codecs::core::codec::Domain;
+use crate::codecs::core::info::Domain;
 use crate::codecs::core::info::{Info, Sizes, FloatForm, seam};
-use crate::codecs::core::spec::Family;
-use crate::codecs::core::function::Emitted;
+use crate::codecs::core::spec::{Family, Tracing};
+use crate::codecs::functions::function::Emitted;
 use crate::codecs::core::pipeline::codec_functions;
 use crate::codecs::component::snorm3::Snorm3;
 use crate::codecs::core::spec::Spec;
@@ -35,7 +35,7 @@ impl Family for Snorm111110Family {
         // beyond reach), so this layout offers the fast encoder only.
         false
     }
-    fn emitted(&self, spec: &Spec) -> Emitted {
+    fn emitted(&self, spec: &Spec, _: Tracing) -> Emitted {
         codec_functions(spec, Snorm3::snorm11_11_10())
     }
 }

@@ -6,9 +6,9 @@
 //! the listing's `s·(1/2047) - 1`, which misses zero by an ulp.
 
 use crate::codecs::core::info::{Info, Sizes, FloatForm};
-use crate::codecs::core::spec::Family;
-use crate::codecs::core::function::{Emitted, Inputs, Role};
-use crate::codecs::core::words::generic_function;
+use crate::codecs::core::spec::{Family, Tracing};
+use crate::codecs::functions::function::{Emitted, Inputs, Role};
+use crate::codecs::functions::words::generic_function;
 use crate::codecs::toolkit::quant::Quant;
 use crate::codecs::core::spec::Spec;
 use crate::model::trace::{Tf, define, trace_module};
@@ -55,7 +55,7 @@ impl Family for Pack12Family {
         // A packing helper: it has no encoder.
         false
     }
-    fn emitted(&self, _spec: &Spec) -> Emitted {
+    fn emitted(&self, _spec: &Spec, _: Tracing) -> Emitted {
         let s12 = || vec![Quant::Snorm(12); 2];
         let u8s = || vec![Quant::Unorm(8); 3];
         helpers!(
@@ -78,7 +78,7 @@ impl Family for Pack12Family {
 }
 
 /// What the helpers' doc comments say of other implementations: measured, not proven
-/// (the decoder bounds of [`crate::decode_bound`] are for codecs).
+/// (the decoder bounds of [`crate::measure::decode_bound`] are for codecs).
 const PORTABILITY: &str = "Other implementations: under the division, square root, contraction, denormal and sign-of-zero latitudes, unitpack verify --portable finds no change over its sample of the inputs (the float-only pack may differ in the sign of a zero); measured, not proven.";
 
 /// The bias of the stored 12-bit integers.

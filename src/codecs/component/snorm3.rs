@@ -14,7 +14,8 @@
 //! grid the nearest is not always a rounded one.
 
 use crate::model::num::helper;
-use crate::codecs::core::codec::{Codec, Domain, unit_or_z};
+use crate::codecs::core::codec::{Codec, unit_or_z};
+use crate::codecs::core::info::Domain;
 use crate::codecs::toolkit::exact::{
     canonical, canonical_or_z, fixed_length2, fixed_ratio, length2, root, root_of,
     snorm_sqrt_ratio, sum_of_squares,
@@ -25,9 +26,9 @@ use crate::model::{Float, V2, V3};
 use std::marker::PhantomData;
 use crate::codecs::core::info::{Info, Sizes, FloatForm, seam};
 use crate::codecs::core::spec::Family;
-use crate::codecs::core::function::Emitted;
+use crate::codecs::functions::function::Emitted;
 use crate::codecs::core::pipeline::codec_functions;
-use crate::codecs::core::spec::{Spec, SpecError};
+use crate::codecs::core::spec::{Spec, SpecError, Tracing};
 
 pub static FAMILY: Snorm3Family = Snorm3Family;
 
@@ -74,7 +75,7 @@ impl Family for Snorm3Family {
         }
     }
     /// Components wider than 10 bits do not fit three to a word: snorm16×3 is two words.
-    fn emitted(&self, spec: &Spec) -> Emitted {
+    fn emitted(&self, spec: &Spec, _: Tracing) -> Emitted {
         match spec.bits() / 3 {
             16 => codec_functions(spec, Snorm3::<TwoWords>::two_words()),
             b => codec_functions(spec, Snorm3::<OneWord>::new([b; 3])),

@@ -3,7 +3,8 @@
 //! clear), the layout of an RGB8 texel; decode re-normalizes `enc·2 - 1`. No code
 //! decodes to zero: each component `(2c - 255)/255` has an odd numerator.
 
-use crate::codecs::core::codec::{Codec, Domain};
+use crate::codecs::core::codec::Codec;
+use crate::codecs::core::info::Domain;
 use crate::codecs::toolkit::exact::{canonical_or_z, length2, unorm_sqrt_ratio};
 use crate::codecs::core::info::{Info, Sizes, FloatForm, seam};
 use crate::codecs::core::codec_family::CodecFamily;

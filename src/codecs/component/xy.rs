@@ -1,7 +1,8 @@
 //! X and Y stored, Z reconstructed (first seed method 1, survey XYOnly, fourth seed):
 //! `z = sqrt(1 - saturate(x² + y²))`, +Z hemisphere, snorm×2.
 
-use crate::codecs::core::codec::{Codec, Domain, above_horizon};
+use crate::codecs::core::codec::{Codec, above_horizon};
+use crate::codecs::core::info::Domain;
 use crate::codecs::toolkit::exact::{
     canonical, canonical_or_z, fixed_root, float_of, floor_ratio_code, fixed_length2, length2,
     root, sqrt_ratio_code,
@@ -12,7 +13,7 @@ use crate::model::{Bool, Float, Uint, V2, V3};
 use crate::codecs::core::info::{Info, Sizes, FloatForm, seam};
 use crate::codecs::core::codec_family::CodecFamily;
 use crate::codecs::core::ieee;
-use crate::codecs::toolkit::texel::{self, TexelCodec, texel_variants};
+use crate::codecs::core::texel::{self, TexelCodec, texel_variants};
 use crate::codecs::core::spec::SpecError;
 
 pub static FAMILY: CodecFamily<Xy> = CodecFamily::new(

@@ -6,7 +6,8 @@
 //! the next `⌊(B-1)/2⌋`, the sign bit of z (1 for `z < 0`) at bit `B - 1` (xy_signz16:
 //! x bits 0–7, y bits 8–14, the sign bit 15). The equator and `-0` are on the +Z side.
 
-use crate::codecs::core::codec::{Codec, Domain};
+use crate::codecs::core::codec::Codec;
+use crate::codecs::core::info::Domain;
 use crate::codecs::azimuthal::disk::unfold;
 use crate::codecs::toolkit::exact::{
     canonical_or_z, fixed_length2, fixed_root, floor_ratio, length2, one_if, root,

@@ -1,27 +1,11 @@
 //! What a codec is, and the generic pipeline every codec shares: quantization, the
 //! precise (integer candidate) search and bit packing are written once, here.
 
+use crate::codecs::core::info::Domain;
 use crate::codecs::toolkit::quant::{Code, Quant, Quants, field_offsets};
 use crate::model::num::helper;
 use crate::model::trace::Value;
 use crate::model::{Bool, Float, Uint, V2, V3, V4, each};
-
-/// Which directions a codec represents.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Domain {
-    Sphere,
-    /// The +Z hemisphere; input below the horizon is first projected onto it (`z ← max(z, 0)`).
-    Hemisphere,
-}
-
-impl Domain {
-    pub fn name(self) -> &'static str {
-        match self {
-            Domain::Sphere => "sphere",
-            Domain::Hemisphere => "hemisphere",
-        }
-    }
-}
 
 /// The parameter vector a codec stores: `V2`, `V3` or (a texel's channels) `V4` of floats.
 pub trait Params<F: Float>: Value {
@@ -133,17 +117,17 @@ pub trait Codec: Send + Sync {
         helper!("decode_float" => self.direction(p))
     }
     /// A bit field that holds bits of more than one parameter, so that a range of it is
-    /// no range of either: [`crate::decode_bound`] then takes its values one at a time.
+    /// no range of either: [`crate::measure::decode_bound`] then takes its values one at a time.
     fn whole_field(&self) -> Option<usize> {
         None
     }
     /// Fields the decoder never reads (a texel's constant channels): a bound proven over
-    /// one value of each holds for all ([`crate::decode_bound`]).
+    /// one value of each holds for all ([`crate::measure::decode_bound`]).
     fn unread_fields(&self) -> &'static [usize] {
         &[]
     }
     /// Fields every valid code holds at one value, as `(field, code)` (meshoptimizer's
-    /// K-bit 1.0): [`crate::decode_bound`] proves the bound for the valid codes, with the
+    /// K-bit 1.0): [`crate::measure::decode_bound`] proves the bound for the valid codes, with the
     /// field at that value, and the decoder's doc comment says so. A code with another
     /// value there still decodes finite (tests/conventions.rs), within no stated bound.
     fn fixed_fields(&self) -> Vec<(usize, i64)> {

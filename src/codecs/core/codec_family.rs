@@ -6,9 +6,9 @@
 //! are no codec at all (lookup tables, `paraboloid_pd`) implement [`Family`] by hand.
 
 use crate::codecs::core::codec::Codec;
-use crate::codecs::core::function::Emitted;
 use crate::codecs::core::info::Info;
-use crate::codecs::core::spec::{Family, Spec, SpecError};
+use crate::codecs::core::spec::{Family, Spec, SpecError, Tracing};
+use crate::codecs::functions::function::Emitted;
 
 /// A [`Family`] of one codec type `C`.
 pub struct CodecFamily<C> {
@@ -83,7 +83,7 @@ impl<C: Codec + 'static> Family for CodecFamily<C> {
     fn variants(&self) -> &'static [&'static str] {
         self.variants
     }
-    fn emitted(&self, spec: &Spec) -> Emitted {
+    fn emitted(&self, spec: &Spec, _: Tracing) -> Emitted {
         (self.emit)(spec, (self.sized)(spec.bits()))
     }
     fn helper_doc(&self, name: &str) -> Option<String> {

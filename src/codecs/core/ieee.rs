@@ -14,12 +14,13 @@
 //! arithmetic gets a defined code, which need not be its direction's (the default tier
 //! scales such input into range first).
 
-use crate::codecs::core::codec::{Codec, Domain, Params, quantize};
-use crate::codecs::core::function::Emitted;
+use crate::codecs::core::codec::{Codec, Params, quantize};
+use crate::codecs::core::info::Domain;
 use crate::codecs::core::info::{OptDesc, OptKind};
 use crate::codecs::core::pipeline::codec_functions;
 use crate::codecs::core::spec::{Spec, SpecError};
-use crate::codecs::core::words::{Bits, Lanes, Lanes8};
+use crate::codecs::functions::function::Emitted;
+use crate::codecs::functions::words::{Bits, Lanes, Lanes8};
 use crate::codecs::toolkit::quant::Quants;
 use crate::model::avx2_lanes::F8;
 use crate::model::deviant::Dev;

@@ -1,8 +1,24 @@
 //! What a codec family says about itself: its description, how its sizes are spelled,
 //! and its options (the [`Info`] of each `crate::codecs::core::spec::Family`).
 
-use crate::codecs::core::codec::Domain;
 use crate::codecs::core::error::SpecError;
+
+/// Which directions a codec represents.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Domain {
+    Sphere,
+    /// The +Z hemisphere; input below the horizon is first projected onto it (`z ← max(z, 0)`).
+    Hemisphere,
+}
+
+impl Domain {
+    pub fn name(self) -> &'static str {
+        match self {
+            Domain::Sphere => "sphere",
+            Domain::Hemisphere => "hemisphere",
+        }
+    }
+}
 
 /// How a family's bit sizes are written in a spec.
 #[derive(Debug)]

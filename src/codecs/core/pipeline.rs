@@ -2,12 +2,12 @@
 //! and back, and the four functions of a codec spec traced and evaluated from it.
 
 use crate::codecs::core::codec::{Codec, Params, dequantize, pack, unpack};
-use crate::codecs::core::decode_boxes::{fetched_range, field_codes};
-use crate::codecs::core::function::{
+use crate::codecs::core::spec::Spec;
+use crate::codecs::functions::decode_boxes::{fetched_range, field_codes};
+use crate::codecs::functions::function::{
     Emitted, Enclose, Eval, Function, Inputs, LanesEval, Role, WordsMap,
 };
-use crate::codecs::core::spec::Spec;
-use crate::codecs::core::words::{Bits, Lanes, Lanes8, chained, generic_function};
+use crate::codecs::functions::words::{Bits, Lanes, Lanes8, chained, generic_function};
 use crate::model::Float;
 use crate::model::V3;
 use crate::model::avx2_lanes::F8;

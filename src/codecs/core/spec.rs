@@ -14,10 +14,12 @@
 //! back as the same spec. An option may be given once, and an option list must not be empty.
 
 pub use crate::codecs::core::error::SpecError;
-use crate::codecs::core::function::Emitted;
 use crate::codecs::core::info::{FloatForm, Info, OptVal};
+use crate::codecs::functions::function::Emitted;
+use std::collections::BTreeMap;
 use std::fmt;
 use std::hash::{Hash, Hasher};
+use std::sync::{Arc, Mutex, OnceLock};
 
 /// One parsed spec: a family, a size, the encoder, and every option's value.
 #[derive(Clone)]
@@ -45,11 +47,11 @@ impl Spec {
         }
     }
 
-    /// Every spec `generate` writes: each size of each family with default options (fast
-    /// and precise), plus each family's variants.
-    pub fn all() -> Vec<Spec> {
+    /// Every spec `generate` writes of `families`: each size of each family with default
+    /// options (fast and precise), plus each family's variants.
+    pub fn all_in(families: Families) -> Vec<Spec> {
         let mut out = Vec::new();
-        for &f in crate::codecs::FAMILIES {
+        for &f in families {
             let info = f.info();
             for (_, bits) in info.spellings() {
                 out.push(Spec::new(f, bits, false));
@@ -58,7 +60,7 @@ impl Spec {
                 }
             }
             for v in f.variants() {
-                let s: Spec = v.parse().expect("a family's variants parse");
+                let s = Spec::parse_in(families, v).expect("a family's variants parse");
                 let precise = Spec {
                     precise: true,
                     ..s.clone()
@@ -111,9 +113,30 @@ impl Spec {
         }
     }
 
-    /// Traces the spec and lists its public functions.
-    pub fn emitted(&self) -> Emitted {
-        self.family.emitted(self)
+    /// The spec's traced functions, traced once per process: every caller (emission,
+    /// the figures, `verify`, the CPU batches) shares one trace. Only this method can ask
+    /// a family to trace ([`Tracing`] has no other maker).
+    pub fn emitted(&self) -> Arc<Emitted> {
+        static TRACED: Mutex<BTreeMap<String, Arc<OnceLock<Arc<Emitted>>>>> =
+            Mutex::new(BTreeMap::new());
+        let cell = {
+            let mut traced = TRACED.lock().unwrap_or_else(|e| e.into_inner());
+            traced.entry(self.id()).or_default().clone()
+        };
+        cell.get_or_init(|| {
+            let mut counts = TRACE_COUNTS.lock().unwrap_or_else(|e| e.into_inner());
+            *counts.entry(self.id()).or_default() += 1;
+            drop(counts);
+            Arc::new(self.family.emitted(self, Tracing(())))
+        })
+        .clone()
+    }
+
+    /// How many times this process has traced the spec `id`: at most once, whatever
+    /// asked for it (tests/internals hold every path to it).
+    pub fn traces(id: &str) -> usize {
+        let counts = TRACE_COUNTS.lock().unwrap_or_else(|e| e.into_inner());
+        counts.get(id).copied().unwrap_or(0)
     }
 
     fn head(&self) -> String {
@@ -184,10 +207,10 @@ impl fmt::Debug for Spec {
     }
 }
 
-/// Every spelling a user can type, for suggestions and `list`.
-pub fn valid_names() -> Vec<String> {
+/// Every spelling a user can type of `families`, for suggestions and `list`.
+pub fn valid_names_in(families: Families) -> Vec<String> {
     let mut v = Vec::new();
-    for f in crate::codecs::FAMILIES {
+    for f in families {
         let info = f.info();
         match info.sizes {
             crate::codecs::core::info::Sizes::Total(_)
@@ -210,15 +233,16 @@ fn options_text(info: &Info) -> String {
     }
 }
 
-impl std::str::FromStr for Spec {
-    type Err = SpecError;
-    fn from_str(given: &str) -> Result<Spec, SpecError> {
+impl Spec {
+    /// Parses what a user types against `families` (the registry hands its own:
+    /// `"oct24p".parse::<Spec>()`).
+    pub fn parse_in(families: Families, given: &str) -> Result<Spec, SpecError> {
         let lower = given.trim().to_ascii_lowercase();
         let (head, opts) = match lower.split_once(':') {
             Some((h, o)) => (h, Some(o)),
             None => (lower.as_str(), None),
         };
-        let (family, bits, rest) = match_head(head)?;
+        let (family, bits, rest) = match_head(families, head)?;
         let info = family.info();
         let (precise, tokens) = match rest.strip_prefix('p') {
             Some(r) if r.is_empty() || r.starts_with('_') => (true, r),
@@ -287,9 +311,12 @@ impl std::str::FromStr for Spec {
 
 /// The family and size `head` starts with, and what follows them (`p`, `_tokens`).
 /// The longest spelling wins; what follows it must be nothing, `p`, or `_`-separated.
-fn match_head(head: &str) -> Result<(&'static dyn Family, u32, &str), SpecError> {
+fn match_head(
+    families: Families,
+    head: &str,
+) -> Result<(&'static dyn Family, u32, &str), SpecError> {
     let mut best: Option<(&'static dyn Family, u32, usize)> = None;
-    for &f in crate::codecs::FAMILIES {
+    for &f in families {
         for (spelled, bits) in f.info().spellings() {
             let Some(rest) = head.strip_prefix(spelled.as_str()) else {
                 continue;
@@ -304,14 +331,14 @@ fn match_head(head: &str) -> Result<(&'static dyn Family, u32, &str), SpecError>
     if let Some((f, bits, len)) = best {
         return Ok((f, bits, &head[len..]));
     }
-    Err(diagnose(head))
+    Err(diagnose(families, head))
 }
 
 /// Why `head` names no spec: a known name with a wrong or missing size, or an unknown name.
-fn diagnose(head: &str) -> SpecError {
+fn diagnose(families: Families, head: &str) -> SpecError {
     use crate::codecs::core::info::Sizes;
     let mut named: Option<(&'static Info, &str)> = None;
-    for f in crate::codecs::FAMILIES {
+    for f in families {
         let info = f.info();
         let stem = match info.sizes {
             Sizes::PerComponent { prefix, .. } => prefix,
@@ -322,7 +349,7 @@ fn diagnose(head: &str) -> SpecError {
         }
     }
     let Some((info, stem)) = named else {
-        return unknown_codec(head);
+        return unknown_codec(families, head);
     };
     if !matches!(info.sizes, Sizes::Total(_) | Sizes::PerField { .. }) {
         return SpecError::Spelling {
@@ -359,19 +386,19 @@ fn diagnose(head: &str) -> SpecError {
             allowed,
         }
     } else {
-        unknown_codec(head)
+        unknown_codec(families, head)
     }
 }
 
 /// Suggestions: names sharing a prefix with what was typed first, then by edit distance.
-fn unknown_codec(given: &str) -> SpecError {
+fn unknown_codec(families: Families, given: &str) -> SpecError {
     let name: String = given.chars().take_while(|c| !c.is_ascii_digit()).collect();
     let key = |v: &String| {
         let related =
             v.starts_with(name.as_str()) || (!name.is_empty() && name.starts_with(v.as_str()));
         (!related, strsim::levenshtein(&name, v))
     };
-    let mut valid = valid_names();
+    let mut valid = valid_names_in(families);
     valid.sort_by_key(|v| (key(v), v.clone()));
     let best = key(&valid[0]);
     let nearest = valid
@@ -388,6 +415,18 @@ fn unknown_codec(given: &str) -> SpecError {
 
 /// A codec family in the registry. Everything about it lives in its own file; nothing
 /// outside that file names it.
+/// Traces so far by spec id ([`Spec::traces`]).
+static TRACE_COUNTS: Mutex<BTreeMap<String, usize>> = Mutex::new(BTreeMap::new());
+
+/// Leave to trace a spec: [`Spec::emitted`] alone makes one, so that no path can trace
+/// a spec again behind its memo. A family may hand it on to the families it is made of.
+#[derive(Clone, Copy)]
+pub struct Tracing(());
+
+/// A registry of families, in `list` order: the parser reads the one it is handed
+/// (`crate::codecs::FAMILIES`), never a global of its own.
+pub type Families = &'static [&'static dyn Family];
+
 pub trait Family: Sync + 'static {
     fn info(&self) -> &Info;
     /// Whether the precise (`p`) encoder is offered. A codec family returns its codec's
@@ -406,8 +445,8 @@ pub trait Family: Sync + 'static {
     fn variants(&self) -> &'static [&'static str] {
         &[]
     }
-    /// Traces the spec and lists its public functions.
-    fn emitted(&self, spec: &Spec) -> Emitted;
+    /// Traces the spec and lists its public functions (called by [`Spec::emitted`] alone).
+    fn emitted(&self, spec: &Spec, tracing: Tracing) -> Emitted;
     /// The lookup tables the spec's shader functions read, which `generate` writes
     /// beside the includes.
     fn tables(&self, _spec: &Spec) -> Vec<Table> {

@@ -2,7 +2,7 @@
 //! layout with equi-angular coordinates on each face. Its arithmetic is
 //! [`crate::codecs::cube_maps::cube::Cube`] with `warped` set; this file is its entry in the registry.
 
-use crate::codecs::core::codec::Domain;
+use crate::codecs::core::info::Domain;
 use crate::codecs::cube_maps::cube::Cube;
 use crate::codecs::core::info::{Info, Sizes, FloatForm, seam};
 use crate::codecs::core::codec_family::CodecFamily;

@@ -14,7 +14,8 @@
 //! every decoder here does, `max(c·fl(1/32767), -1)`, which is the Snorm16 fetch's
 //! quotient `c/32767` or an ulp from it.
 
-use crate::codecs::core::codec::{Codec, Domain};
+use crate::codecs::core::codec::Codec;
+use crate::codecs::core::info::Domain;
 use crate::codecs::core::codec_family::CodecFamily;
 use crate::codecs::core::ieee;
 use crate::codecs::core::info::{Info, Sizes, FloatForm, seam};

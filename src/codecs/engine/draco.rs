@@ -27,7 +27,8 @@
 //! `v·(1/sqrt(v·v))`, or the zero vector where `v·v < 1e-6` (never for a code Draco
 //! writes).
 
-use crate::codecs::core::codec::{Codec, Domain};
+use crate::codecs::core::codec::Codec;
+use crate::codecs::core::info::Domain;
 use crate::codecs::core::codec_family::CodecFamily;
 use crate::codecs::core::ieee;
 use crate::codecs::core::info::{Info, Sizes, FloatForm, seam};

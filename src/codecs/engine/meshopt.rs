@@ -17,7 +17,8 @@
 //! not the divisions); this decoder is the reference, not those.
 
 use crate::codecs::component::snorm3::{OneWord, TwoWords, Words};
-use crate::codecs::core::codec::{Codec, Domain};
+use crate::codecs::core::codec::Codec;
+use crate::codecs::core::info::Domain;
 use crate::codecs::core::codec_family::CodecFamily;
 use crate::codecs::core::ieee;
 use crate::codecs::core::info::{Info, OptDesc, OptKind, Sizes, FloatForm, seam};

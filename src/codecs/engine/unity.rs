@@ -20,7 +20,8 @@
 //! that HLSL compilers turn it into (a CPU port's quotient is an ulp away for some codes) and it normalizes as `n·(1/sqrt(n·n))`, where a
 //! GPU's `normalize` is its own.
 
-use crate::codecs::core::codec::{Codec, Domain};
+use crate::codecs::core::codec::Codec;
+use crate::codecs::core::info::Domain;
 use crate::codecs::core::codec_family::CodecFamily;
 use crate::codecs::core::ieee;
 use crate::codecs::core::info::{Info, OptDesc, OptKind, Sizes, FloatForm, seam};

@@ -7,9 +7,9 @@
 //! shader passes `t` on as a glTF tangent attribute would be.
 
 use crate::codecs::core::codec::Params;
-use crate::codecs::core::decode_boxes::{fetched_range, field_codes};
-use crate::codecs::core::function::{Emitted, Enclose, Function, Inputs, Role};
-use crate::codecs::core::words::{chained, generic_function};
+use crate::codecs::functions::decode_boxes::{fetched_range, field_codes};
+use crate::codecs::functions::function::{Emitted, Enclose, Function, Inputs, Role};
+use crate::codecs::functions::words::{chained, generic_function};
 use crate::codecs::core::spec::Spec;
 use crate::codecs::toolkit::quant::Quant;
 use crate::model::enclosure::Encl;
@@ -159,7 +159,7 @@ const FRAME_BUDGET: usize = 100_000;
 type EnclosedFrame = (V3<Encl>, V4<Encl>);
 
 /// A frame spec's [`Emitted`]: its traced `module` and `functions`, whose decoders get
-/// enclosures for their proven bounds ([`crate::decode_bound`]) over boxes of the
+/// enclosures for their proven bounds ([`crate::measure::decode_bound`]) over boxes of the
 /// `quants` fields: `decode_float` (where the spec has one) through `fetched` on the
 /// fetched values, `decode` and `decode_tbn` (nine outputs, [`tbn`]) through `codes` on
 /// the integer codes. `portable`: whether the
@@ -183,7 +183,7 @@ pub fn emitted<P: Params<Encl> + 'static>(
         let (t, b, n) = tbn(f);
         [t, b, n].iter().flat_map(|c| c.to_array()).collect::<Vec<_>>()
     };
-    let enclose = |eval: crate::codecs::core::function::BoxEval| {
+    let enclose = |eval: crate::codecs::functions::function::BoxEval| {
         Some(Enclose {
             eval,
             whole_field: None,

@@ -29,11 +29,11 @@
 //! `cos(angle·π)`: the same frame to that precision, and the same bits on every path.
 
 use crate::codecs::core::codec::{dequantize, pack, unpack};
-use crate::codecs::core::function::{Emitted, Inputs, Role};
+use crate::codecs::functions::function::{Emitted, Inputs, Role};
 use crate::codecs::core::ieee;
 use crate::codecs::core::info::{Info, Sizes, FloatForm};
-use crate::codecs::core::spec::{Family, Spec};
-use crate::codecs::core::words::generic_function;
+use crate::codecs::core::spec::{Family, Spec, Tracing};
+use crate::codecs::functions::words::generic_function;
 use crate::codecs::frames::frame::{
     FRAME, TBN, canonical_tangent, cross, handedness, policy_normal, tbn, TBN_DECODER, tbn_doc, tbn_function, usable,
 };
@@ -75,7 +75,7 @@ impl Family for GodotAxisAngle {
     fn precise(&self) -> bool {
         false
     }
-    fn emitted(&self, spec: &Spec) -> Emitted {
+    fn emitted(&self, spec: &Spec, _: Tracing) -> Emitted {
         emitted(spec)
     }
     fn engine(&self, _spec: &Spec) -> Option<&'static str> {

@@ -21,12 +21,12 @@
 //! of its own ([`crate::codecs::frames::smallest_three`]); its decoder ends in the same
 //! rotation columns as Filament's ([`crate::codecs::frames::frame::rotation_columns`]).
 
-use crate::codecs::core::function::{Emitted, Inputs, Role};
+use crate::codecs::functions::function::{Emitted, Inputs, Role};
 use crate::model::enclosure::Encl;
 use crate::codecs::core::info::{Info, Sizes, FloatForm};
-use crate::codecs::core::spec::{Family, Spec};
+use crate::codecs::core::spec::{Family, Spec, Tracing};
 use crate::codecs::core::codec::{dequantize, pack, unpack};
-use crate::codecs::core::words::generic_function;
+use crate::codecs::functions::words::generic_function;
 use crate::codecs::frames::frame::{
     FRAME, TBN, TBN_DECODER, canonical_tangent, cross, dot, handedness, policy_normal, rotation_columns,
     tbn, tbn_doc, tbn_function, usable,
@@ -71,7 +71,7 @@ impl Family for QTangent {
     fn precise(&self) -> bool {
         false
     }
-    fn emitted(&self, spec: &Spec) -> Emitted {
+    fn emitted(&self, spec: &Spec, _: Tracing) -> Emitted {
         if spec.bits() == 32 {
             emitted32(spec)
         } else {

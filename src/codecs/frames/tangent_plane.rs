@@ -18,10 +18,10 @@
 //! The one number is then decided from those integers by each codec's exact rounding.
 
 use crate::codecs::core::codec::{pack, sign_not_zero, unpack};
-use crate::codecs::core::function::{Emitted, Inputs, Role};
+use crate::codecs::functions::function::{Emitted, Inputs, Role};
 use crate::codecs::core::info::Info;
-use crate::codecs::core::spec::{Family, Spec};
-use crate::codecs::core::words::{chained, generic_function};
+use crate::codecs::core::spec::{Family, Spec, Tracing};
+use crate::codecs::functions::words::{chained, generic_function};
 use crate::codecs::frames::frame::{FRAME, TBN, cross, handedness, tbn, TBN_DECODER, tbn_doc, tbn_function};
 use crate::codecs::octahedral::oct::oct_codes;
 use crate::codecs::toolkit::exact::{canonical, snorm_ratio_within, unit_on_grid};
@@ -307,7 +307,7 @@ impl Family for TangentPlane {
     fn precise(&self) -> bool {
         false
     }
-    fn emitted(&self, spec: &Spec) -> Emitted {
+    fn emitted(&self, spec: &Spec, _: Tracing) -> Emitted {
         emitted(self.turn, spec)
     }
     fn function_doc(&self, spec: &Spec, name: &str) -> Option<Vec<String>> {

@@ -23,7 +23,8 @@
 //! implementation computes the same code.
 
 use crate::model::num::helper;
-use crate::codecs::core::codec::{Codec, Domain, sign_not_zero};
+use crate::codecs::core::codec::{Codec, sign_not_zero};
+use crate::codecs::core::info::Domain;
 use crate::codecs::azimuthal::disk::{DiskProjection, Folded};
 use crate::codecs::toolkit::exact::decided;
 use crate::codecs::core::info::{Info, Sizes, FloatForm, seam};

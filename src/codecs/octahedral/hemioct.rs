@@ -1,7 +1,8 @@
 //! Hemi-oct (survey Listing 6, Table 3): the +Z half of the octahedron, rotated 45° and
 //! scaled so that it fills the whole square.
 
-use crate::codecs::core::codec::{Codec, Domain, above_horizon};
+use crate::codecs::core::codec::{Codec, above_horizon};
+use crate::codecs::core::info::Domain;
 use crate::codecs::toolkit::exact::{canonical, floor_ratio_code, ratio_code_within};
 use crate::codecs::toolkit::lattice::{Closeness, fixed, nearest, search_doc};
 use crate::codecs::toolkit::quant::{Quant, Quants, signed_code, unsigned_code, zero_code};
@@ -10,7 +11,7 @@ use crate::model::{Bool, Float, V2, V3};
 use crate::codecs::core::info::{Info, Sizes, FloatForm};
 use crate::codecs::core::codec_family::CodecFamily;
 use crate::codecs::core::ieee;
-use crate::codecs::toolkit::texel::{self, TexelCodec, texel_variants};
+use crate::codecs::core::texel::{self, TexelCodec, texel_variants};
 use crate::codecs::core::spec::SpecError;
 
 pub static FAMILY: CodecFamily<HemiOct> = CodecFamily::new(

@@ -2,17 +2,18 @@
 //! with the L1 norm, unfold the lower half over the diagonals, store snorm×2.
 
 use crate::model::num::helper;
-use crate::codecs::core::codec::{Codec, Domain, sign_not_zero};
+use crate::codecs::core::codec::{Codec, sign_not_zero};
+use crate::codecs::core::info::Domain;
 use crate::codecs::toolkit::exact::{canonical, floor_ratio, snorm_ratio_within};
 use crate::codecs::core::info::{Info, OptDesc, OptKind, Sizes, FloatForm, seam};
 use crate::codecs::core::spec::Family;
-use crate::codecs::core::function::Emitted;
+use crate::codecs::functions::function::Emitted;
 use crate::codecs::core::ieee;
 use crate::codecs::core::pipeline::codec_functions;
 use crate::codecs::toolkit::lattice::{Closeness, fixed, nearest, search_doc};
 use crate::codecs::component::snorm12x2::{BIAS, bytes_float, from_bytes, from_unorm8x3};
 use crate::codecs::toolkit::quant::{Quant, Quants};
-use crate::codecs::core::spec::{Spec, SpecError};
+use crate::codecs::core::spec::{Spec, SpecError, Tracing};
 use crate::model::{Bool, Float, V2, V3};
 
 pub static FAMILY: OctFamily = OctFamily;
@@ -72,7 +73,7 @@ impl Family for OctFamily {
     fn variants(&self) -> &'static [&'static str] {
         &["oct24:layout=rgb8", "oct16:guarantee=ieee"]
     }
-    fn emitted(&self, spec: &Spec) -> Emitted {
+    fn emitted(&self, spec: &Spec, _: Tracing) -> Emitted {
         if spec.choice(LAYOUT) == RGB8 {
             codec_functions(spec, Oct24Rgb8)
         } else {

@@ -41,13 +41,14 @@
 //! Zero, NaN and infinite input encode as +Z at the scale 1, `(128, 128, 255)`, whatever
 //! was fetched.
 
-use crate::codecs::core::codec::{Domain, pack};
+use crate::codecs::core::codec::pack;
+use crate::codecs::core::info::Domain;
 use crate::codecs::toolkit::exact::{canonical_or_z, fixed_length2, fixed_ratio, root};
 use crate::codecs::core::info::{Info, Sizes, FloatForm};
-use crate::codecs::core::spec::{Family, Table, TableFormat};
-use crate::codecs::core::function::{Emitted, Extra, Inputs, Role, WordsMap};
+use crate::codecs::core::spec::{Family, Table, TableFormat, Tracing};
+use crate::codecs::functions::function::{Emitted, Extra, Inputs, Role, WordsMap};
 use crate::codecs::core::pipeline::{codec_decoders, through_table, trace_decoders};
-use crate::codecs::core::words::generic_function;
+use crate::codecs::functions::words::generic_function;
 use crate::codecs::toolkit::quant::Quant;
 use crate::codecs::core::spec::Spec;
 use crate::codecs::component::unorm3::Unorm3;
@@ -96,7 +97,7 @@ impl Family for CrytekBfnFamily {
         // The fitting table is itself the encoder's choice of code.
         false
     }
-    fn emitted(&self, spec: &Spec) -> Emitted {
+    fn emitted(&self, spec: &Spec, _: Tracing) -> Emitted {
         emitted(&spec.id())
     }
     fn tables(&self, spec: &Spec) -> Vec<Table> {
@@ -135,7 +136,7 @@ pub fn fitting_table() -> &'static [u8] {
     TABLE.get_or_init(|| {
         // 2^18 texels of 127 trials each: rows on every core.
         let rows: Vec<usize> = (0..SIZE).collect();
-        crate::par::map(&rows, |&j| (0..SIZE).map(|i| best_scale(i, j)).collect::<Vec<u8>>())
+        crate::support::par::map(&rows, |&j| (0..SIZE).map(|i| best_scale(i, j)).collect::<Vec<u8>>())
             .concat()
     })
 }

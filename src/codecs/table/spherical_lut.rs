@@ -64,14 +64,14 @@
 //! lavapipe's texture unit returns it.
 
 use crate::model::num::helper;
-use crate::codecs::core::codec::Domain;
+use crate::codecs::core::info::Domain;
 use crate::codecs::toolkit::exact::{canonical_or_z, decided, length2, past_root_ratio, unorm_sqrt_ratio};
 use crate::codecs::core::info::{Info, OptDesc, OptKind, Sizes, FloatForm, seam};
-use crate::codecs::core::spec::{Family, Table, TableFormat};
-use crate::codecs::core::decode_boxes::fetched_range;
-use crate::codecs::core::function::{Emitted, Enclose, Extra, Function, Inputs, Role, WordsMap};
+use crate::codecs::core::spec::{Family, Table, TableFormat, Tracing};
+use crate::codecs::functions::decode_boxes::fetched_range;
+use crate::codecs::functions::function::{Emitted, Enclose, Extra, Function, Inputs, Role, WordsMap};
 use crate::codecs::core::pipeline::through_table;
-use crate::codecs::core::words::generic_function;
+use crate::codecs::functions::words::generic_function;
 use crate::codecs::toolkit::lattice::{Closeness, Measure};
 use crate::codecs::toolkit::quant::Quant;
 use crate::codecs::core::spec::Spec;
@@ -119,7 +119,7 @@ impl Family for SphericalLutFamily {
     fn variants(&self) -> &'static [&'static str] {
         &["spherical_lut16:lut=matched"]
     }
-    fn emitted(&self, spec: &Spec) -> Emitted {
+    fn emitted(&self, spec: &Spec, _: Tracing) -> Emitted {
         emitted(&spec.id(), SphericalLut::of(spec), spec.precise())
     }
     /// A precise spec reads its fast spec's tables (same files, same names).

@@ -15,8 +15,8 @@
 //! | [`lattice`], [`fixed_decode`] | the precise (nearest-code) search in integer or fixed-point arithmetic |
 //!
 //! The rest: [`quant`] (scalar quantization, survey eqs. 1–2, and bit-field packing),
-//! [`half`] (binary16 fields without pack builtins), [`trig`] (the model's own polynomial
-//! trigonometry for decoders) and [`texel`] (normal-map texel layouts).
+//! [`half`] (binary16 fields without pack builtins) and [`trig`] (the model's own polynomial
+//! trigonometry for decoders). Nothing here names `core`: the toolkit is the layer below it.
 //!
 //! # Example: `oct`'s packed encoder
 //!
@@ -45,5 +45,4 @@ pub mod fixed_trig;
 pub mod half;
 pub mod lattice;
 pub mod quant;
-pub mod texel;
 pub mod trig;

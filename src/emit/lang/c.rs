@@ -11,7 +11,7 @@
 //! rather than x87 arithmetic (x87's excess precision is not supported).
 
 use super::{Backend, FileOptions, KernelFn, Returns, scalar_names};
-use crate::emit::SpecView;
+use crate::emit::lang::SpecView;
 use crate::model::Kind;
 use crate::model::trace::{Ty, UnOp};
 use askama::Template;
@@ -32,7 +32,7 @@ impl C {
         };
         C {
             prefix: prefix.to_string(),
-            types_guard: format!("{}C_TYPES", crate::emit::macro_prefix(prefix)),
+            types_guard: format!("{}C_TYPES", crate::emit::lang::macro_prefix(prefix)),
         }
     }
 
@@ -160,7 +160,10 @@ impl Backend for C {
         }
     }
     fn convert(&self, t: Ty, a: &str) -> String {
-        let a = crate::emit::printer::operand(a.to_string(), crate::emit::printer::prec::UNARY);
+        let a = crate::emit::lang::printer::operand(
+            a.to_string(),
+            crate::emit::lang::printer::prec::UNARY,
+        );
         format!("({}){a}", self.ty(t))
     }
     /// Through the header's memcpy helpers: the only bitcast valid in both C and C++.

@@ -7,7 +7,7 @@ use super::{
     Backend, FileOptions, KERNEL_SELECT, KernelFn, KernelIo, Returns, kernel_io, scalar_names,
     selecting_parts,
 };
-use crate::emit::SpecView;
+use crate::emit::lang::SpecView;
 use crate::model::Kind;
 use crate::model::trace::{BinOp, Op, Ty, UnOp};
 use askama::Template;
@@ -167,7 +167,7 @@ void main() {{
 /// The GLSL macro in front of float declarations: empty by default (GLSL 330 and ES 300
 /// have no `precise`), `precise` where the user defines it so.
 pub fn precise_macro(prefix: &str) -> String {
-    format!("{}PRECISE", crate::emit::macro_prefix(prefix))
+    format!("{}PRECISE", crate::emit::lang::macro_prefix(prefix))
 }
 
 #[derive(Template)]

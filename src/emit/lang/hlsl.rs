@@ -6,7 +6,7 @@ use super::{
     Backend, FileOptions, KERNEL_SELECT, KernelFn, KernelIo, kernel_io, scalar_names,
     selecting_parts,
 };
-use crate::emit::SpecView;
+use crate::emit::lang::SpecView;
 use crate::model::Kind;
 use crate::model::trace::{BinOp, Op, Ty};
 use askama::Template;
@@ -19,7 +19,7 @@ pub struct Hlsl {
 impl Hlsl {
     pub fn new(prefix: &str) -> Hlsl {
         Hlsl {
-            select_macro: format!("{}SELECT", crate::emit::macro_prefix(prefix)),
+            select_macro: format!("{}SELECT", crate::emit::lang::macro_prefix(prefix)),
         }
     }
 }

@@ -8,10 +8,53 @@ pub mod glsl;
 pub mod hlsl;
 pub mod wgsl;
 
-use super::SpecView;
-use crate::emit::literal::f32_literal;
+pub mod layout;
+pub mod literal;
+pub mod printer;
+
 use crate::model::Kind;
 use crate::model::trace::{BinOp, Op, Ty, UnOp};
+use literal::f32_literal;
+
+/// Macros are global in GLSL, HLSL and C: without a prefix they still carry the tool's name.
+pub fn macro_prefix(prefix: &str) -> String {
+    if prefix.is_empty() {
+        "UNITPACK_".into()
+    } else {
+        prefix.to_ascii_uppercase()
+    }
+}
+
+/// C's public array-based entry point of a function whose struct form is [`FnView::name`].
+pub struct Wrapper {
+    /// The public name.
+    pub name: String,
+    pub signature: String,
+    pub body: Vec<String>,
+}
+
+pub struct FnView {
+    pub doc: Vec<String>,
+    pub name: String,
+    pub params: Vec<(String, String)>,
+    pub ret_ty: String,
+    pub body: Vec<String>,
+    pub wrapper: Option<Wrapper>,
+}
+
+pub struct SpecView {
+    pub guard: String,
+    pub title: String,
+    /// Paragraphs under the title: what the spec's functions share.
+    pub doc: Vec<String>,
+    /// Whether a function of the spec is marked "Portable", so that the file header says
+    /// what the mark means.
+    pub portable: bool,
+    /// The definitions of the structs its functions return ([`Backend::struct_def`]),
+    /// each once, before the functions.
+    pub types: Vec<String>,
+    pub functions: Vec<FnView>,
+}
 
 /// What a file template needs besides the functions.
 pub struct FileOptions<'a> {

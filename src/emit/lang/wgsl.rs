@@ -5,9 +5,9 @@ use super::{
     Backend, FileOptions, KERNEL_SELECT, KernelFn, KernelIo, kernel_io, scalar_names,
     selecting_parts,
 };
-use crate::emit::SpecView;
-use crate::emit::literal::f32_literal;
-use crate::emit::printer::top_level_tokens;
+use crate::emit::lang::SpecView;
+use crate::emit::lang::literal::f32_literal;
+use crate::emit::lang::printer::top_level_tokens;
 use crate::model::Kind;
 use crate::model::trace::Ty;
 use askama::Template;

@@ -1,10 +1,10 @@
 //! The inputs every function is verified on: every code up to 24 bits, seeded
 //! random codes above; seeded random unit vectors plus every edge case for encoders.
 
-use crate::codecs::core::function::Inputs;
+use crate::codecs::functions::function::Inputs;
 use crate::codecs::toolkit::half::half_value;
 use crate::codecs::toolkit::quant::{Quant, field_offsets};
-use crate::sampling::random_unit_vectors;
+use crate::support::sampling::random_unit_vectors;
 use rand_core::Rng;
 use rand_pcg::Pcg64Mcg;
 

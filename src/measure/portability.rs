@@ -9,26 +9,27 @@
 //! ([`Role::LutTexel`]). The lean tier's encoders (`guarantee=ieee`), documented not
 //! portable, are measured and marked, not failed. Float outputs report their
 //! largest deviation in ULP; decoders also their largest absolute deviation, which must
-//! stay within the bound [`crate::decode_bound`] proves and their doc comments state. It
+//! stay within the bound [`crate::measure::decode_bound`] proves and their doc comments state. It
 //! needs no GPU, so it builds without the `verify` feature.
 //!
 //! ```no_run
 //! use unitpack::model::deviant::Class;
-//! use unitpack::portability::{Options, run};
+//! use unitpack::measure::portability::{Options, run};
 //! let report = run(&unitpack::Spec::all(), &Class::ALL.map(Into::into), &Options::default());
 //! print!("{}", report.table());
 //! println!("packed encoders portable: {}", report.packed_encoders_portable());
 //! ```
 
 use crate::codecs::Spec;
-use crate::codecs::core::function::{Emitted, Function, Inputs, Role, first_with_same_code};
-use crate::codecs::core::inputs::{edge_vectors, generate};
-pub use crate::decode_bound::UNIT;
+use crate::codecs::functions::function::{Emitted, Function, Inputs, Role, first_with_same_code};
+use crate::codecs::functions::inputs::{edge_vectors, generate};
+pub use crate::measure::figures::UNIT;
 pub use crate::model::deviant::{Class, Classes, Deviation, Mode};
 use crate::model::deviant::{begin_item, item_chose, with};
 use crate::model::trace::Module;
 use std::collections::HashMap;
 use std::fmt::Write;
+use std::sync::Arc;
 
 /// What [`run`] evaluates.
 #[derive(Clone, Debug)]
@@ -140,7 +141,7 @@ pub struct Row {
     /// Decoders: the largest `|deviant − reference|` of an output component, in units of
     /// [`UNIT`] (`2^-24`; infinite when a NaN appeared or vanished).
     pub max_dev: Option<f64>,
-    /// Decoders: the bound [`crate::decode_bound`] proves for every code and every
+    /// Decoders: the bound [`crate::measure::decode_bound`] proves for every code and every
     /// guaranteed class at once, in units of [`UNIT`].
     pub bound: Option<f64>,
     /// Decoders: the box of codes (an inclusive range per field) where the bound is
@@ -252,7 +253,7 @@ fn measure(
         (f.eval)(&input[i * iw..][..iw], &mut reference[k * ow..][..ow]);
     }
     let mut out = vec![0u32; ow];
-    let proven = crate::decode_bound::cached(module, f);
+    let proven = crate::measure::decode_bound::cached(module, f);
     let bound = proven.as_ref().map(|b| b.units);
     classes
         .iter()
@@ -336,7 +337,7 @@ fn measure(
 /// Runs every function of every spec under each class in each mode of `opts`.
 pub fn run(specs: &[Spec], classes: &[Classes], opts: &Options) -> PortabilityReport {
     let modes = opts.modes();
-    let emitted: Vec<Emitted> = specs.iter().map(Spec::emitted).collect();
+    let emitted: Vec<Arc<Emitted>> = specs.iter().map(Spec::emitted).collect();
     // A function with the code and inputs of an earlier one ([`first_with_same_code`]: a
     // precise spec's decoders are its fast spec's) deviates alike item by item: it is
     // measured once and its rows repeated under its own name.
@@ -363,7 +364,7 @@ pub fn run(specs: &[Spec], classes: &[Classes], opts: &Options) -> PortabilityRe
     }
     // On every core: each item's deviations are seeded by the item alone
     // (`begin_item`), so the rows are the same as one job at a time, in the same order.
-    let measured = crate::par::map(&jobs, |(id, module, f, promised)| {
+    let measured = crate::support::par::map(&jobs, |(id, module, f, promised)| {
         measure(id, module, f, classes, &modes, opts.sample, *promised)
     });
     let rows = order

@@ -30,12 +30,13 @@
 //! assert!((n[0] - 0.6).abs() < 4e-3 && (n[2] - 0.8).abs() < 4e-3);
 //! ```
 
-use crate::codecs::core::codec::{Codec, Domain, Params, above_horizon};
-use crate::codecs::core::function::Emitted;
+use crate::codecs::core::codec::{Codec, Params, above_horizon};
+use crate::codecs::core::info::Domain;
 use crate::codecs::core::info::{OptDesc, OptKind};
 use crate::codecs::core::pipeline::codec_functions;
 use crate::codecs::core::spec::{Spec, SpecError};
-use crate::codecs::core::words::{Bits, Lanes, Lanes8};
+use crate::codecs::functions::function::Emitted;
+use crate::codecs::functions::words::{Bits, Lanes, Lanes8};
 use crate::codecs::toolkit::exact::{canonical_or_z, length2, unorm_sqrt_ratio};
 use crate::codecs::toolkit::quant::{Quant, Quants};
 use crate::model::avx2_lanes::F8;

@@ -1,5 +1,5 @@
 //! Prints one traced function as statements of a target language, asking the language
-//! ([`super::lang::Backend`]) for every piece of syntax.
+//! ([`super::Backend`]) for every piece of syntax.
 //!
 //! Every traced operation is printed once, with the operands it was traced with, so nothing
 //! is reassociated, reordered within an operation, duplicated or dropped (values nothing
@@ -26,7 +26,7 @@
 //! the folded and the one-operation-per-statement text of every function, in WGSL and in
 //! GLSL, into the same expression graph.
 
-use super::lang::Backend;
+use super::Backend;
 use crate::model::Kind;
 use crate::model::trace::{BinOp, Func, Node, Op, Ref, Ty, UnOp};
 use std::collections::HashSet;

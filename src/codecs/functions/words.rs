@@ -3,7 +3,7 @@
 //! the adversarial `Dev`, and four or eight SIMD lanes, moving items between memory and
 //! lanes a whole group at a time.
 
-use crate::codecs::core::function::{Function, Inputs, Role, Stages};
+use crate::codecs::functions::function::{Function, Inputs, Role, Stages};
 use crate::model::avx2_lanes::{self, F8, WIDTH};
 use crate::model::deviant::{Dev, DevU};
 use crate::model::lanes::{F4, LaneIo, U4};
@@ -378,9 +378,9 @@ pub(crate) fn chained(
 ) -> Function {
     assert_eq!(first.out_words, then.in_words, "{name}: the steps' words");
     let (iw, mw) = (first.in_words, first.out_words);
-    let compose = |a: &crate::codecs::core::function::Eval,
-                   b: &crate::codecs::core::function::Eval|
-     -> crate::codecs::core::function::Eval {
+    let compose = |a: &crate::codecs::functions::function::Eval,
+                   b: &crate::codecs::functions::function::Eval|
+     -> crate::codecs::functions::function::Eval {
         let (a, b) = (a.clone(), b.clone());
         Arc::new(move |i: &[u32], o: &mut [u32]| {
             // One item per call (`eval_dev`'s callers, `portability`) stays on the stack.
@@ -428,7 +428,7 @@ mod per_item {
 
     pub(super) fn eval<A: Bits + 'static, R: Bits + 'static>(
         f: impl Fn(A) -> R + Send + Sync + 'static,
-    ) -> crate::codecs::core::function::Eval {
+    ) -> crate::codecs::functions::function::Eval {
         Arc::new(move |i, o| {
             for (i, o) in i.chunks_exact(A::WORDS).zip(o.chunks_exact_mut(R::WORDS)) {
                 f(A::read(i)).write(o)
@@ -443,7 +443,7 @@ mod four {
 
     pub(super) fn eval<A: Bits<Lanes> + 'static, R: Bits<Lanes> + 'static>(
         f: impl Fn(A) -> R + Send + Sync + 'static,
-    ) -> crate::codecs::core::function::LanesEval {
+    ) -> crate::codecs::functions::function::LanesEval {
         Arc::new(move |i, o| in_groups::<F4, _, _, 4>(&f, i, o))
     }
 }
@@ -455,7 +455,7 @@ mod eight {
     pub(super) fn eval<A: Bits<Lanes8> + 'static, R: Bits<Lanes8> + 'static>(
         name: &'static str,
         f: impl Fn(A) -> R + Send + Sync + 'static,
-    ) -> crate::codecs::core::function::LanesEval {
+    ) -> crate::codecs::functions::function::LanesEval {
         Arc::new(move |i, o| {
             assert!(
                 avx2_lanes::available(),
@@ -489,7 +489,7 @@ mod eight {
 /// closures.
 macro_rules! generic_function {
     ($name:expr, $role:expr, $inputs:expr, <$F:ident> [$($c:ident),*] |$x:ident: $A:ty| $body:expr) => {
-        $crate::codecs::core::words::function(
+        $crate::codecs::functions::words::function(
             $name,
             $role,
             $inputs,

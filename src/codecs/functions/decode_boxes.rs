@@ -1,5 +1,5 @@
 //! Enclosures of what a decoder's inputs can be over a box of codes, for the proven
-//! decoder bounds (`crate::decode_bound`): the values a texture fetch returns for a range
+//! decoder bounds (`crate::measure::decode_bound`): the values a texture fetch returns for a range
 //! of codes, and the codes of a float field in order.
 
 use crate::codecs::toolkit::quant::Quant;
@@ -14,7 +14,7 @@ pub(crate) fn fetched_range(q: Quant, (c0, c1): (i64, i64)) -> Encl {
     let (at, grid): (fn(Quant, i64) -> f32, f64) = match q {
         Quant::Half | Quant::Single => (float_of_ordinal, float_grid(q)),
         _ => (
-            |q, c| crate::codecs::core::inputs::fetched(q, c as f32),
+            |q, c| crate::codecs::functions::inputs::fetched(q, c as f32),
             crate::model::enclosure::ulp(f64::from(1.0 / q.max_code())),
         ),
     };

@@ -6,7 +6,7 @@
 //! it when [`REFRESH_ENV`] is set.
 
 use crate::codecs::{FAMILIES, Spec};
-use crate::quality::{ErrorStats, VECTOR_SEED};
+use crate::measure::figures::{ErrorStats, VECTOR_SEED};
 
 /// Samples behind the documented error figures (the survey's Table 1 used 2^20 too).
 pub const README_SAMPLES: usize = 1 << 20;
@@ -140,7 +140,7 @@ pub fn catalogue_table() -> String {
 }
 
 /// The tangent-frame specs' round-trip errors, each beside the octahedral normal, tangent
-/// and sign at no more bits ([`crate::quality::oct_frame_baseline`]).
+/// and sign at no more bits ([`crate::measure::quality::oct_frame_baseline`]).
 pub fn frame_error_table() -> String {
     let specs: Vec<Spec> = Spec::all()
         .into_iter()
@@ -149,15 +149,15 @@ pub fn frame_error_table() -> String {
     let pair = |[mean, max]: [f64; 2]| format!("{mean:.5} / {max:.5}");
     let mut s = String::new();
     for (i, spec) in specs.iter().enumerate() {
-        let f = crate::quality::measure_frames(spec).expect("a frame spec");
+        let f = crate::measure::quality::measure_frames(spec).expect("a frame spec");
         if i == 0 {
             s.push_str(&format!(
                 "Over {} seeded orthonormal frames (seed 0x{:032x}), in degrees, mean / sample max (a sample maximum is not a bound); the reference tangent is the input's made orthogonal to the normal, the bitangent `cross(n, t)·sign`.\n\n| spec | bits | normal | tangent | bitangent | handedness flips |\n|---|---|---|---|---|---|\n",
                 f.samples,
-                crate::codecs::core::inputs::FRAME_SEED
+                crate::codecs::functions::inputs::FRAME_SEED
             ));
         }
-        let ((n, t, bits), base) = crate::quality::oct_frame_baseline(spec.bits());
+        let ((n, t, bits), base) = crate::measure::quality::oct_frame_baseline(spec.bits());
         s.push_str(&format!(
             "| `{}` | {} | {} | {} | {} | {} |\n| {n} + {t} + sign | {bits} | {} | {} | {} | {} |\n",
             spec.id(),
@@ -184,7 +184,7 @@ pub fn codec_specs() -> Vec<Spec> {
 }
 
 /// Round-trip error of every [`codec_specs`] spec (`stats[i]` for spec `i`, from
-/// [`crate::quality::measure_all`]), with the ALU instructions of its packed encoder and
+/// [`crate::measure::quality::measure_all`]), with the ALU instructions of its packed encoder and
 /// decoder (`alu[i]`, counted by `unitpack::verify::alu`, which needs the shader tools).
 pub fn error_table(stats: &[Option<ErrorStats>], alu: &[[u32; 2]]) -> String {
     let specs = codec_specs();
@@ -261,14 +261,14 @@ pub fn seed_methods_table(stats: &[Option<ErrorStats>], alu: &[[u32; 2]]) -> Str
     s
 }
 
-/// The proven bound of `spec`'s decoder function `name` ([`crate::decode_bound`]).
-fn decoder_bound(spec: &Spec, name: &str) -> Option<crate::decode_bound::Bound> {
+/// The proven bound of `spec`'s decoder function `name` ([`crate::measure::decode_bound`]).
+fn decoder_bound(spec: &Spec, name: &str) -> Option<crate::measure::figures::Bound> {
     let e = spec.emitted();
     let f = e.functions.iter().find(|f| f.name == name)?;
-    crate::decode_bound::cached(&e.module, f)
+    crate::measure::decode_bound::cached(&e.module, f)
 }
 
-/// The proven bound of every decoder ([`crate::decode_bound`]).
+/// The proven bound of every decoder ([`crate::measure::decode_bound`]).
 pub fn bound_table() -> String {
     let mut s = String::from(
         "How far each decoder's output can move on a conformant implementation that takes \
@@ -282,11 +282,15 @@ pub fn bound_table() -> String {
         .filter(|s| s.info().domain.is_some())
         .collect();
     // On every core first; the cells below read the proven bounds.
-    crate::decode_bound::prove_all(&specs);
+    crate::measure::decode_bound::prove_all(&specs);
     for spec in specs {
         let cell = |name: &str| {
             decoder_bound(&spec, name).map_or("—".to_string(), |b| {
-                format!("{} ({:.1e})", b.units, b.units * crate::decode_bound::UNIT)
+                format!(
+                    "{} ({:.1e})",
+                    b.units,
+                    b.units * crate::measure::figures::UNIT
+                )
             })
         };
         s.push_str(&format!(

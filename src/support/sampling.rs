@@ -1,6 +1,6 @@
 //! Seeded random unit vectors: the sample every error figure is measured on and part of
 //! every encoder's verify inputs. A leaf module, so that both the error methodology
-//! ([`crate::quality`]) and the verify inputs ([`crate::codecs::core::inputs`]) draw on it
+//! ([`crate::measure::quality`]) and the verify inputs ([`crate::codecs::functions::inputs`]) draw on it
 //! without depending on each other.
 
 use rand_core::Rng;

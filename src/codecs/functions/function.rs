@@ -1,6 +1,6 @@
 //! The shader functions a spec emits, as the registry holds them: each [`Function`] with
 //! its `f32` evaluation on raw bits (what the GPU output is compared against), the same
-//! generic function evaluated by the adversarial `Dev` (what `crate::portability`
+//! generic function evaluated by the adversarial `Dev` (what `crate::measure::portability`
 //! measures) and on SIMD lanes (the CPU API), and the inputs it is verified on; and
 //! [`Emitted`], a spec's traced module with its functions.
 
@@ -16,7 +16,7 @@ pub enum Inputs {
     /// Seeded random unit vectors plus every edge case (3 words each).
     Vectors,
     /// Tangent frames: a normal and a tangent with its handedness in `w` (7 words each),
-    /// seeded and edge cases ([`crate::codecs::core::inputs::frames`]).
+    /// seeded and edge cases ([`crate::codecs::functions::inputs::frames`]).
     Frames,
     /// Packed codes with the given fields: all of them up to 24 bits, else seeded random ones.
     Codes(Vec<Quant>),
@@ -143,12 +143,12 @@ pub struct Function {
     /// batches run where the processor has it, bit for bit `eval` on each item.
     pub eval_lanes8: LanesEval,
     /// For a decoder: the same generic function evaluated with [`Encl`] over a box of
-    /// codes, which [`crate::decode_bound`] refines into a proven deviation bound.
+    /// codes, which [`crate::measure::decode_bound`] refines into a proven deviation bound.
     pub enclose: Option<Enclose>,
     /// For a CPU-only [`Emitted::cpu`] function: the emitted functions it chains around
     /// its table fetch, whose costs add up to its own.
     pub parts: Vec<&'static str>,
-    /// For a function made of two steps ([`crate::codecs::core::words::chained`]): the
+    /// For a function made of two steps ([`crate::codecs::functions::words::chained`]): the
     /// steps' `f32` models, so that `verify` runs a first step several functions of a
     /// spec share (a precise encoder's search, a frame's decoder) once for all of them.
     pub stages: Option<Stages>,
@@ -206,7 +206,7 @@ impl Function {
 
 pub type BoxEval = Arc<dyn Fn(&[(i64, i64)]) -> Vec<Encl> + Send + Sync>;
 
-/// A decoder over boxes of codes, for [`crate::decode_bound`].
+/// A decoder over boxes of codes, for [`crate::measure::decode_bound`].
 #[derive(Clone)]
 pub struct Enclose {
     /// One inclusive range per field (signed codes for the float form, raw bit fields for
@@ -219,7 +219,7 @@ pub struct Enclose {
     /// Fields every valid code holds at one value ([`Codec::fixed_fields`]): proven there.
     pub fixed: Vec<(usize, i64)>,
     /// Box evaluations allowed before the bound is stated as it stands, where not
-    /// [`crate::decode_bound::BUDGET`]: a decoder whose enclosures over boxes stay wider
+    /// [`crate::measure::decode_bound::BUDGET`]: a decoder whose enclosures over boxes stay wider
     /// than a single code's never stops earlier, so it spends whatever it is given.
     pub budget: Option<usize>,
 }
@@ -246,7 +246,7 @@ pub struct Emitted {
 /// ([`Module::identity`]) and equal inputs, if there is one. Such a function computes
 /// exactly what the first one does, item by item and under any deviation: its emitted
 /// text differs in the names' prefix alone, and its model is the same traced computation.
-pub fn first_with_same_code(emitted: &[Emitted]) -> Vec<Vec<Option<(usize, usize)>>> {
+pub fn first_with_same_code(emitted: &[Arc<Emitted>]) -> Vec<Vec<Option<(usize, usize)>>> {
     // Identity → the inputs met with it and where first.
     type Seen<'a> = Vec<(&'a Inputs, (usize, usize))>;
     let mut first: std::collections::HashMap<String, Seen> = Default::default();

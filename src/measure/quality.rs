@@ -3,13 +3,11 @@
 //! vectors, `|acos(dot)|` in degrees.
 
 use crate::codecs::Spec;
-use crate::codecs::core::codec::Domain;
-use crate::codecs::core::function::{Emitted, Role};
-use crate::memo::Memo;
-use crate::sampling::random_unit_vectors;
-
-/// Seeds are fixed so that every run, and every file generated, is identical.
-pub const VECTOR_SEED: u128 = 0x756e_6974_7061_636b_5f76_6563_746f_7273;
+use crate::codecs::core::info::Domain;
+use crate::codecs::functions::function::{Emitted, Role};
+use crate::measure::figures::{ErrorStats, FrameBaseline, FrameStats, VECTOR_SEED};
+use crate::support::memo::Memo;
+use crate::support::sampling::random_unit_vectors;
 
 /// Angle between two vectors in degrees, both normalized in f64.
 pub fn angle_deg(a: [f32; 3], b: [f32; 3]) -> f64 {
@@ -19,25 +17,6 @@ pub fn angle_deg(a: [f32; 3], b: [f32; 3]) -> f64 {
     let lb = (b[0] * b[0] + b[1] * b[1] + b[2] * b[2]).sqrt();
     let d = (a[0] * b[0] + a[1] * b[1] + a[2] * b[2]) / (la * lb);
     d.clamp(-1.0, 1.0).acos().abs().to_degrees()
-}
-
-/// Round-trip error of a spec's packed encode → decode: the angle in degrees (mean and
-/// sample max), and the first seed's metric, the mean squared error of the components of
-/// `n - n'` (its MSE over the `abs(n1 - n2)` difference image: three channels per
-/// normal, peak 1).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ErrorStats {
-    pub mean: f64,
-    pub max: f64,
-    pub mse: f64,
-    pub samples: usize,
-}
-
-impl ErrorStats {
-    /// `10·log10(1 / MSE)` in dB, the seed's PSNR for a peak of 1.
-    pub fn psnr(&self) -> f64 {
-        -10.0 * self.mse.log10()
-    }
 }
 
 /// `Σ (aₖ - bₖ)² / 3` in f64: one normal's share of the seed's MSE.
@@ -91,7 +70,7 @@ pub fn measure_emitted(e: &Emitted, domain: Domain, samples: usize) -> ErrorStat
 
 /// [`measure`] for every spec, on all cores; the same result as one at a time.
 pub fn measure_all(specs: &[Spec], samples: usize) -> Vec<Option<ErrorStats>> {
-    crate::par::map(specs, |spec| measure(spec, samples))
+    crate::support::par::map(specs, |spec| measure(spec, samples))
 }
 
 /// What a spec's figures are known by: its name and the sample size.
@@ -129,41 +108,6 @@ pub fn import(stats: impl IntoIterator<Item = (StatsKey, Option<ErrorStats>)>) {
     MEMO.extend(stats);
 }
 
-/// Round-trip errors of a tangent-frame spec over the seeded frames
-/// ([`crate::codecs::core::inputs::frames`], the edge frames left out): the angle in
-/// degrees between each decoded vector and its reference, mean and sample max, for the
-/// normal, the tangent and the bitangent, and how many signs flipped. The references are
-/// the input's: `n` normalized, `t` made orthogonal to it (Gram–Schmidt) and normalized,
-/// the sign `w < 0 ? -1 : +1`, the bitangent `cross(n, t)·sign`; the decoded bitangent is
-/// `cross(n', t')·sign'` (glTF's convention), all in f64.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct FrameStats {
-    pub samples: usize,
-    /// `[mean, sample max]` in degrees.
-    pub normal: [f64; 2],
-    pub tangent: [f64; 2],
-    pub bitangent: [f64; 2],
-    pub flips: usize,
-}
-
-impl FrameStats {
-    /// `normal 0.00123° / 0.00456°, tangent …, bitangent …` (mean / sample max), and the
-    /// flips where `flips` is asked.
-    pub fn summary(&self, flips: bool) -> String {
-        let pair = |[mean, max]: [f64; 2]| format!("{mean:.5}° / {max:.5}°");
-        let mut s = format!(
-            "normal {}, tangent {}, bitangent {}",
-            pair(self.normal),
-            pair(self.tangent),
-            pair(self.bitangent)
-        );
-        if flips {
-            s.push_str(&format!(", handedness flips {}", self.flips));
-        }
-        s
-    }
-}
-
 type F3 = [f64; 3];
 
 fn cross3(a: F3, b: F3) -> F3 {
@@ -192,11 +136,11 @@ fn angle3(a: F3, b: F3) -> f64 {
 /// generator such as MikkTSpace writes it orthogonal, and an encoder that does not make
 /// it so, as Godot's does not, would be measured on input it is not given).
 fn reference_frames() -> Vec<[f32; 7]> {
-    let edges = crate::codecs::core::inputs::edge_frames().len();
-    crate::codecs::core::inputs::frames()[edges * 7..]
+    let edges = crate::codecs::functions::inputs::edge_frames().len();
+    crate::codecs::functions::inputs::frames()[edges * 7..]
         .chunks_exact(7)
         .enumerate()
-        .filter(|(i, _)| !crate::codecs::core::inputs::tilted(*i))
+        .filter(|(i, _)| !crate::codecs::functions::inputs::tilted(*i))
         .map(|(_, x)| std::array::from_fn(|i| f32::from_bits(x[i])))
         .collect()
 }
@@ -309,9 +253,6 @@ pub fn oct_frame_baseline(bits: u32) -> FrameBaseline {
     MEMO.extend([(bits, b.clone())]);
     b
 }
-
-/// The specs a frame baseline stands for and their total bits, with its figures.
-pub type FrameBaseline = ((String, String, u32), FrameStats);
 
 /// [`oct_frame_baseline`], measured.
 fn frame_baseline(bits: u32) -> FrameBaseline {

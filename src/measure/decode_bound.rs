@@ -10,30 +10,19 @@
 //! so every code.
 
 use crate::codecs::Spec;
-use crate::codecs::core::decode_boxes::float_code_range;
-use crate::codecs::core::function::Inputs;
-use crate::codecs::core::function::{Enclose, Function, Role};
+use crate::codecs::functions::decode_boxes::float_code_range;
+use crate::codecs::functions::function::Inputs;
+use crate::codecs::functions::function::{Enclose, Function, Role};
 use crate::codecs::toolkit::quant::Quant;
-use crate::memo::Memo;
+use crate::measure::figures::{Bound, UNIT};
 use crate::model::enclosure::Encl;
 use crate::model::trace::Module;
+use crate::support::memo::Memo;
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 
-/// The unit bounds are stated in: the f32 ULP of values in `[0.5, 1)`.
-pub const UNIT: f64 = 1.0 / 16_777_216.0;
-
 /// Box evaluations allowed per function before the bound is stated as it stands.
 pub const BUDGET: usize = 600_000;
-
-/// A proven bound: every output component of every code is within `units · 2^-24` of
-/// the reference on every implementation the guaranteed classes allow.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Bound {
-    pub units: f64,
-    /// The box of codes (one inclusive range per field) whose bound is the stated one.
-    pub at: Vec<(i64, i64)>,
-}
 
 struct Boxed {
     dev: f64,
@@ -266,7 +255,7 @@ pub fn prove_all(specs: &[Spec]) {
     let mut todo = std::collections::BTreeMap::new();
     for spec in specs {
         let e = spec.emitted();
-        for f in e.functions.into_iter().filter(|f| f.enclose.is_some()) {
+        for f in e.functions.iter().filter(|f| f.enclose.is_some()).cloned() {
             let key = key(&e.module, &f);
             if !CACHE.contains(&key) {
                 todo.insert(key, f);
@@ -274,6 +263,6 @@ pub fn prove_all(specs: &[Spec]) {
         }
     }
     let todo: Vec<_> = todo.into_iter().collect();
-    let bounds = crate::par::map(&todo, |(_, f)| of(f));
+    let bounds = crate::support::par::map(&todo, |(_, f)| of(f));
     CACHE.extend(todo.into_iter().map(|(key, _)| key).zip(bounds));
 }
