@@ -171,3 +171,31 @@ fn the_precise_encoder_is_offered_where_its_search_is_exact() {
         }
     }
 }
+
+/// A family reads its options by key and its choices by name: a name the option does not
+/// list is a mistake in the family's code, and says which family, option and name.
+#[test]
+fn reading_a_choice_the_option_does_not_list_names_family_option_and_name() {
+    let spec: Spec = "oct24:layout=rgb8".parse().unwrap();
+    let layout = spec
+        .info()
+        .options
+        .iter()
+        .find(|o| o.key == "layout")
+        .unwrap();
+    assert!(spec.chose(layout, "rgb8") && !spec.chose(layout, "snorm"));
+    let wrong =
+        std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| spec.chose(layout, "rgb9")))
+            .unwrap_err();
+    let text = wrong.downcast_ref::<String>().unwrap();
+    assert_eq!(text, "oct: option layout has no choice rgb9");
+    let scaled: Spec = "stereo_scaled16:scale=2.5".parse().unwrap();
+    let scale = scaled
+        .info()
+        .options
+        .iter()
+        .find(|o| o.key == "scale")
+        .unwrap();
+    assert_eq!(scaled.number_of(scale), 2.5);
+    assert_eq!(spec.option(scale), None, "oct has no scale option");
+}

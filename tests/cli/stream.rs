@@ -7,6 +7,7 @@ use std::io::Write;
 use std::path::PathBuf;
 use std::process::Stdio;
 use unitpack::codecs::Spec;
+use unitpack::codecs::core::info::OptVal;
 
 #[test]
 fn encode_prints_one_hex_code_per_line() {
@@ -106,7 +107,13 @@ fn encode_and_decode_round_trip_for_every_codec() {
         // degrees (README, "The first seed's method 3a"; sample max 7.2°), with either encoder.
         // meshoptimizer's words hold K-bit coordinates: its direction has 2K bits.
         let direction_bits = match spec.family().engine(spec) {
-            Some("meshoptimizer") => 2 * spec.number(0) as u32,
+            Some("meshoptimizer") => {
+                let k = spec.info().options.iter().find(|o| o.key == "bits");
+                match k.and_then(|k| spec.option(k)) {
+                    Some(OptVal::Number(k)) => 2 * k as u32,
+                    other => panic!("{name}: K is {other:?}"),
+                }
+            }
             _ => spec.bits(),
         };
         let tol = match direction_bits {

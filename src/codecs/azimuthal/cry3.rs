@@ -16,7 +16,7 @@ use crate::codecs::toolkit::fixed_decode::{BITS, search_doc};
 use crate::codecs::core::pipeline::codec_functions;
 use crate::codecs::azimuthal::lambert::{Lambert, LambertDecoder, WithDecoder};
 use crate::codecs::core::spec::SpecError;
-use crate::codecs::azimuthal::spheremap::{DECODER, DECODER_OPTION};
+use crate::codecs::azimuthal::spheremap::DECODER_OPTION;
 use crate::model::{Float, V2, V3};
 
 pub static FAMILY: CodecFamily<Cry3> = CodecFamily::new(
@@ -35,8 +35,9 @@ pub static FAMILY: CodecFamily<Cry3> = CodecFamily::new(
         lambert: Lambert { bits },
         decoder: Cry3Decoder { optimized: false },
     },
-    |spec, c| codec_functions(spec, if spec.choice(DECODER) == 1 { c.optimized() } else { c }),
+    codec_functions,
 )
+.with_options(|spec, c| if spec.chose(&DECODER_OPTION, "optimized") { c.optimized() } else { c })
 .with_variants(&[
     "cry3_16:decoder=optimized",
     "cry3_24:decoder=optimized",

@@ -25,8 +25,6 @@ pub const DECODER_OPTION: OptDesc = OptDesc {
     help: "the seed's decoder: plain, or its optimized rewrite (the same mapping, fewer instructions)",
     kind: OptKind::Choice(&["plain", "optimized"]),
 };
-/// Index of the `decoder` option; choice 1 is `optimized`.
-pub const DECODER: usize = 0;
 
 pub static FAMILY: CodecFamily<Spheremap> = CodecFamily::new(
     Info {
@@ -44,8 +42,9 @@ pub static FAMILY: CodecFamily<Spheremap> = CodecFamily::new(
         lambert: Lambert { bits },
         decoder: SpheremapDecoder { optimized: false },
     },
-    |spec, c| codec_functions(spec, if spec.choice(DECODER) == 1 { c.optimized() } else { c }),
+    codec_functions,
 )
+.with_options(|spec, c| if spec.chose(&DECODER_OPTION, "optimized") { c.optimized() } else { c })
 .with_variants(&["spheremap16:decoder=optimized", "spheremap24:decoder=optimized", "spheremap32:decoder=optimized"])
 .with_helper_doc(|name| (name == "encode_codes").then(|| search_doc(BITS)));
 

@@ -31,11 +31,9 @@ pub static FAMILY: CodecFamily<StereoScaled> = CodecFamily::new(
         options: &[SCALE_OPTION, ieee::OPTION],
     },
     |bits| StereoScaled { bits, scale: DEFAULT_SCALE },
-    |spec, c| {
-        let c = StereoScaled { scale: spec.number(SCALE), ..c };
-        ieee::functions(spec, c, codec_functions)
-    },
+    |spec, c| ieee::functions(spec, c, codec_functions),
 )
+.with_options(|spec, c| StereoScaled { scale: spec.number_of(&SCALE_OPTION), ..c })
 .with_validate(|spec| ieee::validate(spec, false))
 .with_variants(&["stereo_scaled16:guarantee=ieee"])
 .with_helper_doc(|name| (name == "encode_codes").then(|| search_doc(BITS)));
@@ -51,7 +49,6 @@ const SCALE_OPTION: OptDesc = OptDesc {
         max: 1000.0,
     },
 };
-const SCALE: usize = 0;
 
 impl StereoScaled {
     /// Scaled stereographic with the seed's default scale (1.7777); see

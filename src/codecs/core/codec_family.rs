@@ -13,11 +13,13 @@ use crate::codecs::functions::function::Emitted;
 /// A [`Family`] of one codec type `C`.
 pub struct CodecFamily<C> {
     pub info: Info,
-    /// The codec of a valid total size.
+    /// The codec of a valid total size, its options at their defaults.
     sized: fn(u32) -> C,
+    /// The sized codec with the spec's options that change it (meshopt's K, a scale, a
+    /// decoder form), read by key ([`Spec::choice_of`], [`Spec::number_of`]).
+    configure: fn(&Spec, C) -> C,
     /// Traces and lists the spec's functions for its codec (`codec_functions`, or
-    /// `texel::functions` for a family with the texel layouts; a family whose options
-    /// change the codec applies them here).
+    /// `texel::functions` for a family with the texel layouts).
     emit: fn(&Spec, C) -> Emitted,
     validate: fn(&Spec) -> Result<(), SpecError>,
     variants: &'static [&'static str],
@@ -31,12 +33,18 @@ impl<C> CodecFamily<C> {
         CodecFamily {
             info,
             sized,
+            configure: |_, c| c,
             emit,
             validate: |_| Ok(()),
             variants: &[],
             helper_doc: |_| None,
             engine: None,
         }
+    }
+
+    /// With the options that change the codec applied to it ([`CodecFamily::codec_of`]).
+    pub const fn with_options(self, configure: fn(&Spec, C) -> C) -> Self {
+        CodecFamily { configure, ..self }
     }
 
     /// With the check that combines the options with the size ([`Family::validate`]).
@@ -67,6 +75,11 @@ impl<C> CodecFamily<C> {
     pub fn codec(&self, bits: u32) -> Result<C, SpecError> {
         self.info.check_bits(bits).map(self.sized)
     }
+
+    /// The codec a spec of this family names: its size and its options.
+    pub fn codec_of(&self, spec: &Spec) -> C {
+        (self.configure)(spec, (self.sized)(spec.bits()))
+    }
 }
 
 impl<C: Codec + 'static> Family for CodecFamily<C> {
@@ -84,7 +97,7 @@ impl<C: Codec + 'static> Family for CodecFamily<C> {
         self.variants
     }
     fn emitted(&self, spec: &Spec, _: Tracing) -> Emitted {
-        (self.emit)(spec, (self.sized)(spec.bits()))
+        (self.emit)(spec, self.codec_of(spec))
     }
     fn helper_doc(&self, name: &str) -> Option<String> {
         (self.helper_doc)(name)

@@ -15,8 +15,7 @@
 //! scales such input into range first).
 
 use crate::codecs::core::codec::{Codec, Params, quantize};
-use crate::codecs::core::info::Domain;
-use crate::codecs::core::info::{OptDesc, OptKind};
+use crate::codecs::core::info::{Domain, OptDesc, OptKind, OptVal};
 use crate::codecs::core::pipeline::codec_functions;
 use crate::codecs::core::spec::{Spec, SpecError};
 use crate::codecs::functions::function::Emitted;
@@ -50,8 +49,11 @@ pub fn asked(spec: &Spec) -> bool {
     let info = spec.info();
     spec.family().engine(spec).is_some()
         || info.option_index(OPTION.key).is_some_and(|i| {
-        matches!(info.options[i].kind, OptKind::Choice(names) if names[spec.choice(i)] == "ieee")
-    })
+            matches!(
+                (&info.options[i].kind, spec.option(&OPTION)),
+                (OptKind::Choice(names), Some(OptVal::Choice(c))) if names[c] == "ieee"
+            )
+        })
 }
 
 /// The lean tier is the fast encoder's, in a codec's own packing: the precise search

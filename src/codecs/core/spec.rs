@@ -14,7 +14,7 @@
 //! back as the same spec. An option may be given once, and an option list must not be empty.
 
 pub use crate::codecs::core::error::SpecError;
-use crate::codecs::core::info::{FloatForm, Info, OptVal};
+use crate::codecs::core::info::{FloatForm, Info, OptDesc, OptKind, OptVal};
 use crate::codecs::functions::function::Emitted;
 use std::collections::BTreeMap;
 use std::fmt;
@@ -98,18 +98,50 @@ impl Spec {
             ..self.clone()
         }
     }
-    /// The index of the chosen name of choice option `i`.
-    pub fn choice(&self, i: usize) -> usize {
-        match self.opts[i] {
-            OptVal::Choice(c) => c,
-            OptVal::Number(_) => panic!("option {i} is a number"),
+    /// The value the spec gives option `opt`, found by its key: `None` where the family
+    /// has no such option (shared options such as `layout` or `guarantee` are read by code
+    /// that serves many families). Options are read by key, never by position, so that a
+    /// family may reorder or add options without its readers changing.
+    pub fn option(&self, opt: &OptDesc) -> Option<OptVal> {
+        let i = self.info().option_index(opt.key)?;
+        Some(self.opts[i])
+    }
+    /// The index of the chosen name of the family's own choice option `opt`.
+    pub fn choice_of(&self, opt: &OptDesc) -> usize {
+        match self.option(opt) {
+            Some(OptVal::Choice(c)) => c,
+            other => panic!(
+                "{} has no choice option {} ({other:?})",
+                self.info().name,
+                opt.key
+            ),
         }
     }
-    /// The value of number option `i`.
-    pub fn number(&self, i: usize) -> f32 {
-        match self.opts[i] {
-            OptVal::Number(x) => x,
-            OptVal::Choice(_) => panic!("option {i} is a choice"),
+    /// Whether the spec chose `name` for the family's own choice option `opt` (a name the
+    /// option does not list is a mistake in the family's code, and panics saying so).
+    pub fn chose(&self, opt: &OptDesc, name: &str) -> bool {
+        let OptKind::Choice(names) = opt.kind else {
+            panic!("{}: option {} is no choice", self.info().name, opt.key)
+        };
+        let at = names.iter().position(|n| *n == name);
+        let at = at.unwrap_or_else(|| {
+            panic!(
+                "{}: option {} has no choice {name}",
+                self.info().name,
+                opt.key
+            )
+        });
+        self.choice_of(opt) == at
+    }
+    /// The value of the family's own number option `opt`.
+    pub fn number_of(&self, opt: &OptDesc) -> f32 {
+        match self.option(opt) {
+            Some(OptVal::Number(x)) => x,
+            other => panic!(
+                "{} has no number option {} ({other:?})",
+                self.info().name,
+                opt.key
+            ),
         }
     }
 

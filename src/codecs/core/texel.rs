@@ -31,8 +31,7 @@
 //! ```
 
 use crate::codecs::core::codec::{Codec, Params, above_horizon};
-use crate::codecs::core::info::Domain;
-use crate::codecs::core::info::{OptDesc, OptKind};
+use crate::codecs::core::info::{Domain, OptDesc, OptKind, OptVal};
 use crate::codecs::core::pipeline::codec_functions;
 use crate::codecs::core::spec::{Spec, SpecError};
 use crate::codecs::functions::function::Emitted;
@@ -141,21 +140,23 @@ pub const OPTION: OptDesc = OptDesc {
 /// without this option — oct's `layout` is another one).
 pub fn layout(spec: &Spec) -> Option<Layout> {
     let i = spec.info().option_index(OPTION.key)?;
-    match spec.info().options[i].kind {
-        OptKind::Choice(c) if c == Layout::CHOICES => Layout::from_choice(spec.choice(i)),
+    match (&spec.info().options[i].kind, spec.option(&OPTION)?) {
+        (OptKind::Choice(c), OptVal::Choice(chosen)) if *c == Layout::CHOICES => {
+            Layout::from_choice(chosen)
+        }
         _ => None,
     }
 }
 
 /// A texel holds two 8-bit parameters: the family's 16-bit form.
 pub fn validate(spec: &Spec) -> Result<(), SpecError> {
-    let Some(i) = spec.info().option_index(OPTION.key) else {
+    let Some(OptVal::Choice(chosen)) = spec.option(&OPTION) else {
         return Ok(());
     };
-    if spec.choice(i) > 0 && spec.bits() != 16 {
+    if chosen > 0 && spec.bits() != 16 {
         return Err(SpecError::BadValue {
             key: OPTION.key.into(),
-            value: Layout::CHOICES[spec.choice(i)].into(),
+            value: Layout::CHOICES[chosen].into(),
             why: format!(
                 "a texel layout holds the 16-bit form only ({}16)",
                 spec.info().name

@@ -45,6 +45,9 @@ const fn bits_option(word: u32) -> OptDesc {
     }
 }
 
+const BITS8: OptDesc = bits_option(8);
+const BITS16: OptDesc = bits_option(16);
+
 pub static MESHOPT_OCT8: CodecFamily<MeshoptOct<OneWord>> = CodecFamily::new(
     Info {
         name: "meshopt_oct8",
@@ -55,11 +58,13 @@ pub static MESHOPT_OCT8: CodecFamily<MeshoptOct<OneWord>> = CodecFamily::new(
         edge_policy: EDGE,
         decode_note: DECODE,
         float_form: FloatForm::Continuous { seam: seam::OCTAHEDRAL_FOLD },
-        options: &[bits_option(8), ieee::ENGINE_OPTION],
+        options: &[BITS8, ieee::ENGINE_OPTION],
     },
-    |_| MeshoptOct::new_unchecked(8),
-    |spec, c| codec_functions(spec, with_k(spec, c)),
+    // Four words a vector: 32 bits of 8-bit words, 64 of 16-bit ones.
+    |bits| MeshoptOct::new_unchecked(bits / 4),
+    codec_functions,
 )
+.with_options(|spec, c| c.with_k(spec.number_of(&BITS8)))
 .with_validate(validate)
 .with_variants(&["meshopt_oct8:bits=6"])
 .with_engine("meshoptimizer");
@@ -74,17 +79,19 @@ pub static MESHOPT_OCT16: CodecFamily<MeshoptOct<TwoWords>> = CodecFamily::new(
         edge_policy: EDGE,
         decode_note: DECODE,
         float_form: FloatForm::Continuous { seam: seam::OCTAHEDRAL_FOLD },
-        options: &[bits_option(16), ieee::ENGINE_OPTION],
+        options: &[BITS16, ieee::ENGINE_OPTION],
     },
-    |_| MeshoptOct::new_unchecked(16),
-    |spec, c| codec_functions(spec, with_k(spec, c)),
+    |bits| MeshoptOct::new_unchecked(bits / 4),
+    codec_functions,
 )
+.with_options(|spec, c| c.with_k(spec.number_of(&BITS16)))
 .with_validate(validate)
 .with_variants(&["meshopt_oct16:bits=12"])
 .with_engine("meshoptimizer");
 
 fn validate(spec: &Spec) -> Result<(), SpecError> {
-    let k = spec.number(0);
+    // Both sizes' option is keyed `bits`.
+    let k = spec.number_of(&BITS8);
     if k.fract() == 0.0 {
         Ok(())
     } else {
@@ -93,14 +100,6 @@ fn validate(spec: &Spec) -> Result<(), SpecError> {
             value: k.to_string(),
             why: "K is a whole number of bits".into(),
         })
-    }
-}
-
-/// The codec with the spec's K.
-fn with_k<W>(spec: &Spec, c: MeshoptOct<W>) -> MeshoptOct<W> {
-    MeshoptOct {
-        k: spec.number(0) as u32,
-        ..c
     }
 }
 
@@ -123,13 +122,17 @@ impl<W> MeshoptOct<W> {
             words: PhantomData,
         }
     }
+    /// The same word size with K-bit coordinates (the spec's `bits`, validated whole).
+    fn with_k(self, k: f32) -> Self {
+        MeshoptOct { k: k as u32, ..self }
+    }
 }
 
 impl MeshoptOct<OneWord> {
     /// `meshopt_oct8` with K-bit coordinates (4 ≤ K ≤ 8).
     pub fn new(k: u32) -> Result<Self, SpecError> {
         let spec: Spec = format!("meshopt_oct8:bits={k}").parse()?;
-        Ok(MeshoptOct { k: spec.number(0) as u32, ..MeshoptOct::new_unchecked(8) })
+        Ok(MESHOPT_OCT8.codec_of(&spec))
     }
 }
 
@@ -137,7 +140,7 @@ impl MeshoptOct<TwoWords> {
     /// `meshopt_oct16` with K-bit coordinates (4 ≤ K ≤ 16).
     pub fn new(k: u32) -> Result<Self, SpecError> {
         let spec: Spec = format!("meshopt_oct16:bits={k}").parse()?;
-        Ok(MeshoptOct { k: spec.number(0) as u32, ..MeshoptOct::new_unchecked(16) })
+        Ok(MESHOPT_OCT16.codec_of(&spec))
     }
 }
 

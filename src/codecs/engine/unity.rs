@@ -52,8 +52,9 @@ pub static FAMILY: CodecFamily<UnityOct> = CodecFamily::new(
         options: &[ROUNDING, ieee::ENGINE_OPTION],
     },
     |_| UnityOct { nearest: false },
-    |spec, _| codec_functions(spec, UnityOct { nearest: spec.choice(0) == 1 }),
+    codec_functions,
 )
+.with_options(|spec, _| UnityOct { nearest: spec.chose(&ROUNDING, "nearest") })
 .with_variants(&["unity_oct24:rounding=nearest"])
 .with_engine("Unity");
 
@@ -66,9 +67,7 @@ impl UnityOct {
             "unity_oct24"
         }
         .parse()?;
-        Ok(UnityOct {
-            nearest: spec.choice(0) == 1,
-        })
+        Ok(FAMILY.codec_of(&spec))
     }
 }
 

@@ -29,19 +29,19 @@ static INFO: Info = Info {
     edge_policy: "input need not be unit length; zero, NaN and infinite input encode as +Z",
     decode_note: "every code decodes to a unit vector (normalized as v / sqrt(v·v))",
     float_form: FloatForm::Continuous { seam: seam::OCTAHEDRAL_FOLD },
-    options: &[
-        OptDesc {
-            key: "layout",
-            help: "rgb8 stores oct24 as the survey's unorm8×3 bytes (snorm12×2 split into an RGB8 texel)",
-            kind: OptKind::Choice(&["snorm", "rgb8"]),
-        },
-        ieee::OPTION,
-    ],
+    options: &[LAYOUT, ieee::OPTION],
 };
 
-/// Index of the `layout` option; choice 1 is `rgb8`.
-const LAYOUT: usize = 0;
-const RGB8: usize = 1;
+const LAYOUT: OptDesc = OptDesc {
+    key: "layout",
+    help: "rgb8 stores oct24 as the survey's unorm8×3 bytes (snorm12×2 split into an RGB8 texel)",
+    kind: OptKind::Choice(&["snorm", "rgb8"]),
+};
+
+/// Whether the spec asks for the `rgb8` layout (oct24 in three bytes).
+fn rgb8(spec: &Spec) -> bool {
+    spec.chose(&LAYOUT, "rgb8")
+}
 
 impl Family for OctFamily {
     fn info(&self) -> &Info {
@@ -51,7 +51,7 @@ impl Family for OctFamily {
         Oct::EXACT_SEARCH && Oct24Rgb8::EXACT_SEARCH
     }
     fn float_form(&self, spec: &Spec) -> FloatForm {
-        if spec.choice(LAYOUT) == RGB8 {
+        if rgb8(spec) {
             FloatForm::Unfilterable {
                 why: "its float form splits two 12-bit fields across three bytes",
                 seam: seam::OCTAHEDRAL_FOLD,
@@ -61,20 +61,20 @@ impl Family for OctFamily {
         }
     }
     fn validate(&self, spec: &Spec) -> Result<(), SpecError> {
-        if spec.choice(LAYOUT) == RGB8 && spec.bits() != 24 {
+        if rgb8(spec) && spec.bits() != 24 {
             return Err(SpecError::BadValue {
                 key: "layout".into(),
                 value: "rgb8".into(),
                 why: "the rgb8 layout holds oct24 only".into(),
             });
         }
-        ieee::validate(spec, spec.choice(LAYOUT) == RGB8)
+        ieee::validate(spec, rgb8(spec))
     }
     fn variants(&self) -> &'static [&'static str] {
         &["oct24:layout=rgb8", "oct16:guarantee=ieee"]
     }
     fn emitted(&self, spec: &Spec, _: Tracing) -> Emitted {
-        if spec.choice(LAYOUT) == RGB8 {
+        if rgb8(spec) {
             codec_functions(spec, Oct24Rgb8)
         } else {
             ieee::functions(spec, Oct { bits: spec.bits() }, codec_functions)

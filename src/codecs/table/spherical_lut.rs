@@ -90,11 +90,11 @@ pub const SIZE: usize = 256;
 /// A table texel's channel, and each stored code's field.
 const BYTE: Quant = Quant::Unorm(8);
 
-static OPTIONS: &[OptDesc] = &[OptDesc {
+const TABLES: OptDesc = OptDesc {
     key: "lut",
     help: "the tables' content: seed = the seed's UnityScript (atan at texel corners; its sin/cos table reads codes as c/128 - 1, the encoder writes c/127.5 - 1); matched = atan at texel centres and a sin/cos table that inverts the encoder's quantization",
     kind: OptKind::Choice(&["seed", "matched"]),
-}];
+};
 
 static INFO: Info = Info {
     name: "spherical_lut",
@@ -105,7 +105,7 @@ static INFO: Info = Info {
     edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z (atan texel (128, 128); the precise encoder keeps that code)",
     decode_note: "the sin/cos table's texel·2 - 1, not renormalized: unit length to within the table's rounding (each component within 1/255)",
     float_form: FloatForm::Continuous { seam: seam::AZIMUTH_WRAP },
-    options: OPTIONS,
+    options: &[TABLES],
 };
 
 impl Family for SphericalLutFamily {
@@ -192,7 +192,11 @@ pub enum SphericalLut {
 
 impl SphericalLut {
     fn of(spec: &Spec) -> SphericalLut {
-        [SphericalLut::Seed, SphericalLut::Matched][spec.choice(0)]
+        if spec.chose(&TABLES, "matched") {
+            SphericalLut::Matched
+        } else {
+            SphericalLut::Seed
+        }
     }
 
     /// The atan table, `SIZE × SIZE` bytes, row `j` (the texel's y) after row `j - 1`.
