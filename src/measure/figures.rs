@@ -37,7 +37,8 @@ pub struct Figures {
     pub errors: Option<ErrorStats>,
     /// A tangent-frame spec's frame figures, with the comparison they are set against.
     pub frames: Option<FrameFigures>,
-    /// The proven bound of each decoder, by the function's local name.
+    /// The proven bound of the packed decoder and of the float form, by the function's
+    /// local name.
     pub bounds: BTreeMap<&'static str, Bound>,
 }
 

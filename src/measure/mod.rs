@@ -15,7 +15,7 @@ use crate::codecs::functions::function::Role;
 use figures::{ErrorStats, FrameFigures, Measured};
 
 /// `spec`'s traced functions and every figure its docs quote: the frame figures of a
-/// tangent-frame spec, the proven bound of each decoder, and `errors` (measured by the
+/// tangent-frame spec, the proven bounds of its decoders, and `errors` (measured by the
 /// caller, who chooses the sample: [`measure`] takes one for a batch).
 pub fn measured(spec: &Spec, errors: Option<ErrorStats>) -> Measured {
     let emitted = spec.emitted();
@@ -23,10 +23,12 @@ pub fn measured(spec: &Spec, errors: Option<ErrorStats>) -> Measured {
         stats,
         baseline: quality::oct_frame_baseline(spec.bits()),
     });
-    let bounds = emitted
-        .functions
-        .iter()
-        .filter(|f| matches!(f.role, Role::Decode | Role::DecodeFloat))
+    // The bounds the docs state: the packed decoder's and the float form's (the first
+    // function of each role; a frame's TBN decoder and a texel's other decoders are
+    // documented through them).
+    let bounds = [Role::Decode, Role::DecodeFloat]
+        .into_iter()
+        .filter_map(|role| emitted.functions.iter().find(|f| f.role == role))
         .filter_map(|f| Some((f.name, decode_bound::cached(&emitted.module, f)?)))
         .collect();
     Measured {
