@@ -93,7 +93,7 @@ pub struct Session {
 /// no cache: no folder, no fingerprint, or a file at the path that is not ours.
 pub fn open() -> Option<Session> {
     let path = path()?;
-    let header = format!("{MAGIC} v3 exe={:016x}", fingerprint()?);
+    let header = format!("{MAGIC} v4 exe={:016x}", fingerprint()?);
     let mut loaded = (0, 0, 0);
     match std::fs::symlink_metadata(&path) {
         // Only a plain file can be ours (a FIFO would block the read).
@@ -151,8 +151,9 @@ pub fn format(
                 let at: Vec<String> = b.at.iter().map(|(lo, hi)| format!("{lo}:{hi}")).collect();
                 writeln!(
                     t,
-                    "bound {key:016x} {:016x} {}",
+                    "bound {key:016x} {:016x} {:016x} {}",
                     b.units.to_bits(),
+                    b.reached.to_bits(),
                     at.join(",")
                 )
             }
@@ -195,7 +196,7 @@ pub fn parse(text: &str, header: &str) -> Option<Parsed> {
         let w: Vec<&str> = line.split(' ').collect();
         match w[..] {
             ["bound", k, "none"] => bounds.push((key(k)?, None)),
-            ["bound", k, units, at] => {
+            ["bound", k, units, reached, at] => {
                 let at = at
                     .split(',')
                     .map(|r| {
@@ -203,8 +204,8 @@ pub fn parse(text: &str, header: &str) -> Option<Parsed> {
                         Some((lo.parse().ok()?, hi.parse().ok()?))
                     })
                     .collect::<Option<Vec<(i64, i64)>>>()?;
-                let units = float(units)?;
-                bounds.push((key(k)?, Some(Bound { units, at })));
+                let (units, reached) = (float(units)?, float(reached)?);
+                bounds.push((key(k)?, Some(Bound { units, at, reached })));
             }
             ["stats", samples, spec, "none"] => {
                 stats.push(((spec.to_string(), samples.parse().ok()?), None))

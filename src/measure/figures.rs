@@ -105,4 +105,17 @@ pub struct Bound {
     pub units: f64,
     /// The box of codes (one inclusive range per field) whose bound is the stated one.
     pub at: Vec<(i64, i64)>,
+    /// The most a single code was shown to reach, in the same units: the true bound lies
+    /// in `[reached, units]`. Equal where the search closed the gap; below `units` where
+    /// it spent its evaluation budget first, so that `units` is sound but may be loose,
+    /// and every text that prints it says so ([`Bound::tight`]).
+    pub reached: f64,
+}
+
+impl Bound {
+    /// Whether the proof closed: some single code reaches the stated bound, so no
+    /// smaller bound holds.
+    pub fn tight(&self) -> bool {
+        self.reached >= self.units
+    }
 }

@@ -345,7 +345,7 @@ fn gen_keeps_its_figures_for_the_next_run() {
     let text = std::fs::read_to_string(&file).expect("the first run writes the cache");
     let header = text.lines().next().unwrap().to_string();
     assert!(
-        header.starts_with("unitpack figure cache v3 exe="),
+        header.starts_with("unitpack figure cache v4 exe="),
         "{header}"
     );
     assert!(text.lines().any(|l| l.starts_with("bound ")), "{text}");
@@ -396,7 +396,7 @@ fn gen_keeps_its_figures_for_the_next_run() {
     // Another build's file, an older format's, or a damaged one, is not read, and is
     // replaced by this one's.
     for foreign in [
-        text.replacen(&header, "unitpack figure cache v3 exe=0123456789abcdef", 1),
+        text.replacen(&header, "unitpack figure cache v4 exe=0123456789abcdef", 1),
         text.replacen(&header, "unitpack figure cache v2 exe=0123456789abcdef", 1),
         format!("{text}bound zz\n"),
     ] {

@@ -12,6 +12,7 @@ fn figures_round_trip() {
             Some(Bound {
                 units: 0.1 + 0.2,
                 at: vec![(-3, 4), (0, 65535)],
+                reached: 0.25,
             }),
         ),
     ];
