@@ -65,19 +65,11 @@ fn a_build_script_generates_includes_with_the_light_library() {
     }
 }
 
-#[test]
-fn the_library_without_default_features_builds_at_most_25_crates() {
+/// `cargo tree --offline --prefix none` with `args`: one package per line.
+fn tree(args: &[&str]) -> String {
     let out = cargo()
-        .args([
-            "tree",
-            "--offline",
-            "-p",
-            "unitpack-build-example",
-            "-e",
-            "normal,build",
-            "--prefix",
-            "none",
-        ])
+        .args(["tree", "--offline", "--prefix", "none"])
+        .args(args)
         .output()
         .expect("run cargo tree");
     assert!(
@@ -85,7 +77,12 @@ fn the_library_without_default_features_builds_at_most_25_crates() {
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
-    let text = String::from_utf8_lossy(&out.stdout);
+    String::from_utf8(out.stdout).expect("cargo tree prints UTF-8")
+}
+
+#[test]
+fn the_library_without_default_features_builds_at_most_25_crates() {
+    let text = tree(&["-p", "unitpack-build-example", "-e", "normal,build"]);
     let mut crates: Vec<&str> = text
         .lines()
         .filter_map(|l| l.split_whitespace().next())
@@ -99,4 +96,28 @@ fn the_library_without_default_features_builds_at_most_25_crates() {
         );
     }
     assert!(crates.len() <= 25, "{} crates: {crates:?}", crates.len());
+}
+
+/// `cargo build` and `cargo test` resolve the same features for every package the build
+/// has (the features pinned in Cargo.toml), so that alternating them builds the library
+/// once: a dependency built with other features is another build of it and of everything
+/// above it, the library included.
+#[test]
+fn build_and_test_resolve_the_same_features() {
+    let resolved = |edges: &str| -> std::collections::BTreeSet<String> {
+        tree(&["-p", "unitpack", "-f", "{p} [{f}]", "-e", edges])
+            .lines()
+            .map(|l| l.trim_end_matches(" (*)").to_string())
+            .collect()
+    };
+    let build = resolved("normal,build");
+    let test = resolved("normal,build,dev");
+    assert!(build.len() > 50, "{build:?}");
+    assert!(test.len() > build.len(), "the tests add packages");
+    let differ: Vec<&String> = build.difference(&test).collect();
+    assert!(
+        differ.is_empty(),
+        "built with other features under `cargo test` than under `cargo build` (pin them in \
+         Cargo.toml): {differ:?}"
+    );
 }

@@ -409,6 +409,19 @@ fn packed_code_is_the_texel_a_render_target_would_store() {
         let Inputs::Codes(q) = &dec.inputs else {
             panic!("{spec}: decoder inputs")
         };
+        // The near-tie window below is eight f32 ULP of the scaled parameter: up to about
+        // 6 % of the inputs for a 16-bit field, but a quarter of a code for a 20-bit one,
+        // where an f32 parameter no longer decides the code. Said at once, by name.
+        for field in q {
+            assert!(
+                matches!(field, Quant::Single | Quant::Half) || field.bits() <= 16,
+                "{spec}: a {}-bit field ({field:?}): this check holds a packed code to the \
+                 texel of its f32 float form, which decides fields of at most 16 bits; a \
+                 wider field needs an oracle of its own (split it into fields of 16 bits or \
+                 fewer, or extend this test)",
+                field.bits()
+            );
+        }
         let mut ties = 0;
         for v in &vs {
             let mut code = vec![0u32; enc.out_words];

@@ -175,6 +175,16 @@ struct Recorder {
 
 thread_local! {
     static REC: RefCell<Option<Recorder>> = const { RefCell::new(None) };
+    /// The functions being defined, outermost first. A definition that panics leaves its
+    /// name here, so that what catches the panic can say where a rule failed
+    /// ([`take_defining`]); [`trace_module`] starts it empty.
+    static DEFINING: RefCell<Vec<String>> = const { RefCell::new(Vec::new()) };
+}
+
+/// The functions whose definitions were open when tracing stopped (outermost first),
+/// emptied: after a panic, where it happened.
+pub fn take_defining() -> Vec<String> {
+    DEFINING.with(|d| std::mem::take(&mut *d.borrow_mut()))
 }
 
 fn with<R>(f: impl FnOnce(&mut Recorder) -> R) -> R {
@@ -889,6 +899,7 @@ fn begin_define(name: &str, tys: &[Ty]) -> Option<Vec<Ref>> {
         );
         return None;
     }
+    DEFINING.with(|d| d.borrow_mut().push(name.to_string()));
     Some(with(|r| {
         r.stack.push(Vec::new());
         r.scaled.push(vec![false; tys.len()]);
@@ -904,6 +915,7 @@ fn begin_define(name: &str, tys: &[Ty]) -> Option<Vec<Ref>> {
 /// returning `ret` (the fields of `shape`, where it has one).
 #[inline(never)]
 fn end_define(name: &str, param_names: &[&str], tys: Vec<Ty>, ret: Vec<Ref>, shape: Option<Shape>) {
+    DEFINING.with(|d| d.borrow_mut().pop());
     match shape {
         Some(s) => assert_eq!(ret.len(), s.fields.len(), "{name}: one value per field"),
         None => assert_eq!(
@@ -964,6 +976,7 @@ pub fn trace_module(build: impl FnOnce()) -> Module {
         let prev = r.borrow_mut().replace(Recorder::default());
         assert!(prev.is_none(), "trace_module does not nest");
     });
+    take_defining();
     struct Reset;
     impl Drop for Reset {
         fn drop(&mut self) {

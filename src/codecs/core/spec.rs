@@ -159,9 +159,35 @@ impl Spec {
             let mut counts = TRACE_COUNTS.lock().unwrap_or_else(|e| e.into_inner());
             *counts.entry(self.id()).or_default() += 1;
             drop(counts);
-            Arc::new(self.family.emitted(self, Tracing(())))
+            Arc::new(self.traced())
         })
         .clone()
+    }
+
+    /// The family's trace of this spec. A rule the trace breaks (a tracer's assertion, a
+    /// codec's own check) panics again, naming the spec, its family and the functions
+    /// being defined, which the first message need not know.
+    fn traced(&self) -> Emitted {
+        let run = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            self.family.emitted(self, Tracing(()))
+        }));
+        run.unwrap_or_else(|p| {
+            let message = p
+                .downcast_ref::<String>()
+                .map(String::as_str)
+                .or_else(|| p.downcast_ref::<&str>().copied())
+                .unwrap_or("(a panic without a message)");
+            let at = crate::model::trace::take_defining();
+            let at = if at.is_empty() {
+                String::new()
+            } else {
+                format!(", in {}", at.join(" → "))
+            };
+            panic!(
+                "tracing {self} (family {}){at}: {message}",
+                self.info().name
+            )
+        })
     }
 
     /// How many times this process has traced the spec `id`: at most once, whatever
