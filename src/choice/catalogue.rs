@@ -112,6 +112,17 @@ impl Catalogue {
     pub fn get(&self, id: &str) -> Option<&Entry> {
         self.specs.iter().find(|e| e.spec == id)
     }
+
+    /// The ids of the codec specs among `specs` (those with a domain) that have no entry:
+    /// a family added since [`PATH`] was last written, which `list` and `choose` would
+    /// otherwise leave out without a word.
+    pub fn missing(&self, specs: &[Spec]) -> Vec<String> {
+        specs
+            .iter()
+            .filter(|s| s.info().domain.is_some() && self.get(&s.id()).is_none())
+            .map(Spec::id)
+            .collect()
+    }
 }
 
 /// Computes the catalogue for `specs` (the codecs, in catalogue order) from their error

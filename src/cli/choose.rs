@@ -68,6 +68,16 @@ struct Ranked<'a> {
 /// The ranked table, `limit` rows at most (0: all), or the JSON of every row.
 pub fn run(query: &Query, order: Order, json: bool, limit: usize) -> anyhow::Result<String> {
     let c = Catalogue::load();
+    // A spec without figures cannot be ranked: said on stderr, where a script's parse of
+    // the table or the JSON is not disturbed.
+    let missing = c.missing(&crate::codecs::Spec::all());
+    if !missing.is_empty() {
+        eprintln!(
+            "warning: not ranked, no figures in this build for {}: {} lacks them",
+            missing.join(", "),
+            crate::choice::catalogue::PATH
+        );
+    }
     let ranked: Vec<Choice> = choose(&c, query, order)?;
     let shown = if limit == 0 {
         ranked.len()

@@ -67,6 +67,16 @@ pub fn list_text() -> String {
                 s.push_str(&format!("{:<w$}   {}\n", "", super::choose::row(e)));
             }
         }
+        let missing = catalogue.missing(&crate::codecs::Spec::all_in(std::slice::from_ref(f)));
+        if !missing.is_empty() {
+            s.push_str(&format!(
+                "{:<w$}   no figures in this build for {}: {} lacks them \
+                 (`UNITPACK_REFRESH=1 cargo test --release --test figures` writes it; rebuild after)\n",
+                "",
+                missing.join(", "),
+                crate::choice::catalogue::PATH
+            ));
+        }
     }
     s.push_str(&format!(
         "\nA spec is {GRAMMAR}: oct24p, snorm8x3, stereo_scaled16:scale=2, oct24:layout=rgb8.\n"
