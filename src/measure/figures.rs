@@ -107,8 +107,9 @@ pub struct Bound {
     pub at: Vec<(i64, i64)>,
     /// The most a single code was shown to reach, in the same units: the true bound lies
     /// in `[reached, units]`. Equal where the search closed the gap; below `units` where
-    /// it spent its evaluation budget first, so that `units` is sound but may be loose,
-    /// and every text that prints it says so ([`Bound::tight`]).
+    /// it spent its evaluation budget first, so that `units` is sound but may be loose:
+    /// the include's doc comment and the bounds table say so ([`Bound::tight`]); the
+    /// catalogue that `list`, `choose` and the report read keeps `units` alone.
     pub reached: f64,
 }
 
