@@ -268,7 +268,7 @@ fn line_matches(expected: &str, actual: &str) -> bool {
             None => return false,
         }
     }
-    rest.len() >= last.len() && rest.ends_with(last)
+    rest.ends_with(last)
 }
 
 /// A small RGB8 tangent-space normal map, for the examples that convert `rock_n.png`.
