@@ -333,8 +333,13 @@ fn example_sessions_print_what_the_docs_show() {
 fn readme_figures_are_the_tools() {
     let readme = read(&root().join("README.md"));
     // The recommendations: what `choose` ranks first for each case, from the catalogue
-    // compiled into the binary (tests/cli/choose.rs runs each command).
-    let table = unitpack::choice::recommend::table(&unitpack::choice::catalogue::Catalogue::load());
+    // file as it is on disk, which the binary compiles in (tests/figures/tables.rs holds
+    // the two equal; tests/cli/choose.rs runs each command).
+    use unitpack::choice::catalogue::{self, Catalogue};
+    let file = read(&root().join(catalogue::PATH));
+    let table = unitpack::choice::recommend::table(
+        &Catalogue::parse(&file).expect("src/choice/catalogue.json parses"),
+    );
     let fresh =
         unitpack::report::doc_tables::replace_block(&readme, "readme", "recommendations", &table)
             .expect("README.md has the recommendations block");

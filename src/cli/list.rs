@@ -11,7 +11,11 @@ pub const GRAMMAR: &str = "NAME[BITS][p][:key=value,...]";
 /// The `list` table: each family with the specs a user types, then each of its
 /// catalogue's specs with the figures a choice needs.
 pub fn list_text() -> String {
-    let catalogue = Catalogue::load();
+    list_text_of(&Catalogue::load())
+}
+
+/// [`list_text`] from the figures of `catalogue`.
+pub fn list_text_of(catalogue: &Catalogue) -> String {
     // The family column is as wide as the longest name.
     let w = FAMILIES
         .iter()

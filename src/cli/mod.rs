@@ -30,7 +30,7 @@ use std::path::PathBuf;
 pub use crate::support::atomic::{AtomicFile, write_atomic, write_atomic_with};
 pub use generate::{generate, generate_with};
 pub use include::gen_text;
-pub use list::{GRAMMAR, list_json, list_text};
+pub use list::{GRAMMAR, list_json, list_text, list_text_of};
 pub use manifest::{HEADER, MANIFEST};
 pub use stream::{Direction, Format, MAX_LINE, filter, transcode};
 

@@ -108,9 +108,10 @@ registry! {
         paraboloid_pd [FAMILY] => combine_paraboloid_pd;
     }
     /// Cube maps: a face index and two coordinates on that face.
-    cube_maps {
+    cube_maps (faces) {
         cube [FAMILY] => Cube;
         warpedcube [FAMILY];
+        eac [FAMILY] => Eac;
     }
     /// Table-driven codecs: lookup textures and fitting tables the shader reads.
     table {

@@ -198,7 +198,8 @@ fn code_ranges(f: &Function) -> Option<Vec<(i64, i64)>> {
 
 /// The proven bound of a decoder function (`None` for other functions).
 pub fn of(f: &Function) -> Option<Bound> {
-    Some(prove(&code_ranges(f)?, f.enclose.as_ref()?))
+    let e = f.enclose.as_ref()?;
+    Some(prove(&e.parts.clone().or_else(|| code_ranges(f))?, e))
 }
 
 /// Every bound this process knows, by [`key`].
@@ -212,8 +213,9 @@ static CACHE: Memo<u128, Option<Bound>> = Memo::new();
 fn key(module: &Module, f: &Function) -> u128 {
     use std::hash::{Hash, Hasher};
     let text = format!(
-        "{:?} {:?} {:?} {}",
+        "{:?} {:?} {:?} {:?} {}",
         code_ranges(f),
+        f.enclose.as_ref().map(|e| &e.parts),
         f.enclose.as_ref().map(|e| e.whole_field),
         f.enclose.as_ref().map(|e| &e.fixed),
         module.identity(f.name),

@@ -4,6 +4,7 @@
 //! all of them.
 
 mod crytek_bfn;
+mod eac;
 mod engine;
 mod eqarea_oct;
 mod frames;

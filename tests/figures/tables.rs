@@ -136,14 +136,28 @@ fn the_choice_catalogue_is_fresh() {
     if refreshing() {
         if fresh != text {
             std::fs::write(&path, &fresh).unwrap();
-            eprintln!("{} rewritten: rebuild to compile it in", catalogue::PATH);
         }
+        // What the binary prints from the catalogue, written here from the one just
+        // computed, so that one refresh writes it all: `list`'s table (which
+        // tests/cli/list.rs holds the binary to, once the next build has compiled the
+        // file in) and the README's recommendations (which tests/readme.rs checks
+        // against the file as it is on disk).
+        write_if_changed(
+            &root().join("tests/cli/list.txt"),
+            &unitpack::cli::list_text_of(&computed),
+        );
+        let readme = root().join("README.md");
+        let text = std::fs::read_to_string(&readme).unwrap();
+        let table = unitpack::choice::recommend::table(&computed);
+        let fresh = replace_block(&text, "readme", "recommendations", &table)
+            .expect("README.md has the recommendations block");
+        write_if_changed(&readme, &fresh);
         return;
     }
     assert!(
         fresh == text,
         "{} is stale: run `{REFRESH_COMMAND}` (or `UNITPACK_REFRESH=1 cargo test --release \
-         --test figures`) and rebuild",
+         --test figures`)",
         catalogue::PATH
     );
     // And the binary holds the same figures, read back bit for bit.
@@ -152,6 +166,12 @@ fn the_choice_catalogue_is_fresh() {
         "the compiled-in catalogue differs from {}: rebuild",
         catalogue::PATH
     );
+}
+
+fn write_if_changed(path: &std::path::Path, text: &str) {
+    if std::fs::read_to_string(path).ok().as_deref() != Some(text) {
+        std::fs::write(path, text).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    }
 }
 
 /// The lean tier's point: oct16's packed encoder in the instructions of its octahedral

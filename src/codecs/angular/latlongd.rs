@@ -410,6 +410,7 @@ fn emitted(spec_id: &str, bits: u32) -> Emitted {
         unread: &[],
         fixed: Vec::new(),
         budget: None,
+        parts: None,
     });
     let ring = generic_function!(
         "encode_ring",

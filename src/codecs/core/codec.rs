@@ -3,6 +3,7 @@
 
 use crate::codecs::core::info::Domain;
 use crate::codecs::toolkit::quant::{Code, Quant, Quants, field_offsets};
+use crate::model::enclosure::Encl;
 use crate::model::num::helper;
 use crate::model::trace::Value;
 use crate::model::{Bool, Float, Uint, V2, V3, V4, each};
@@ -120,6 +121,21 @@ pub trait Codec: Send + Sync {
     /// no range of either: [`crate::measure::decode_bound`] then takes its values one at a time.
     fn whole_field(&self) -> Option<usize> {
         None
+    }
+    /// The parts a decoder splits a code into by integer operations alone, which no
+    /// implementation can change (a combined index's face, row and column), each an
+    /// inclusive range: the decoders' bound is then proven over boxes of parts
+    /// ([`Codec::parts_direction`]), since boxes of a combined index's fields straddle
+    /// its rows, and a split by comparisons keeps no range apart. `None`: over the fields.
+    fn proof_parts(&self) -> Option<Vec<(i64, i64)>> {
+        None
+    }
+    /// The decoder after its integer split, on enclosures of the parts
+    /// ([`Codec::proof_parts`]). Where a codec names parts without it, every output is
+    /// unknown, so its bound is infinite and `tests/figures/decode_bound.rs` fails.
+    fn parts_direction(&self, parts: &[Encl]) -> V3<Encl> {
+        let _ = parts;
+        V3::new(Encl::unknown(), Encl::unknown(), Encl::unknown())
     }
     /// Fields the decoder never reads (a texel's constant channels): a bound proven over
     /// one value of each holds for all ([`crate::measure::decode_bound`]).

@@ -5,7 +5,7 @@ use crate::codecs::core::codec::{Codec, Params, dequantize, pack, unpack};
 use crate::codecs::core::spec::Spec;
 use crate::codecs::functions::decode_boxes::{fetched_range, field_codes};
 use crate::codecs::functions::function::{
-    Emitted, Enclose, Eval, Function, Inputs, LanesEval, Role, WordsMap,
+    BoxEval, Emitted, Enclose, Eval, Function, Inputs, LanesEval, Role, WordsMap,
 };
 use crate::codecs::functions::words::{Bits, Lanes, Lanes8, chained, generic_function};
 use crate::model::Float;
@@ -190,12 +190,36 @@ where
     let whole_field = c.whole_field();
     let unread = c.unread_fields();
     let fixed = c.fixed_fields();
+    if let Some(parts) = c.proof_parts() {
+        // Both decoders reach the parts exactly (the float form re-quantizes each fetched
+        // `c/M` exactly, and the split is integer operations): one proof over the parts
+        // covers every code of each.
+        let eval: BoxEval = Arc::new(move |r: &[(i64, i64)]| {
+            let p: Vec<Encl> = r
+                .iter()
+                .map(|&(a, b)| Encl::range(a as f64, b as f64, 1.0))
+                .collect();
+            c.parts_direction(&p).to_array().to_vec()
+        });
+        for f in &mut functions {
+            f.enclose = Some(Enclose {
+                eval: eval.clone(),
+                whole_field: None,
+                unread: &[],
+                fixed: Vec::new(),
+                budget: None,
+                parts: Some(parts.clone()),
+            });
+        }
+        return functions;
+    }
     functions[0].enclose = Some(Enclose {
         eval: Arc::new(fetch_box),
         whole_field,
         unread,
         fixed: fixed.clone(),
         budget: None,
+        parts: None,
     });
     functions[1].enclose = Some(Enclose {
         eval: Arc::new(field_box),
@@ -203,6 +227,7 @@ where
         unread,
         fixed,
         budget: None,
+        parts: None,
     });
     functions
 }

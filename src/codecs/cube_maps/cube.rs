@@ -18,6 +18,7 @@
 
 use crate::model::num::helper;
 use crate::codecs::core::codec::Codec;
+use crate::codecs::cube_maps::faces::{Face, placed};
 use crate::codecs::core::info::Domain;
 use crate::codecs::toolkit::exact::{canonical_or_z, fixed_length2, fixed_ratio, fixed_root, root, unorm_ratio};
 use crate::codecs::core::info::{Info, Sizes, FloatForm, seam};
@@ -28,7 +29,7 @@ use crate::codecs::core::pipeline::codec_functions;
 use crate::codecs::toolkit::quant::{Quant, Quants};
 use crate::codecs::core::spec::SpecError;
 use crate::codecs::toolkit::trig::{atan2_pi, sincos_pi};
-use crate::model::{Bool, Float, V2, V3};
+use crate::model::{Float, V2, V3};
 
 pub static FAMILY: CodecFamily<Cube> = CodecFamily::new(
     Info {
@@ -56,53 +57,6 @@ pub struct Cube {
 
 /// The largest face number, as a unorm field's `M`.
 const FACES: f32 = 7.0;
-
-/// Which face a canonical vector lies on, and its coordinates' numerators and divisor.
-struct Face<F: Float> {
-    /// `2·axis + (major < 0)`.
-    number: F,
-    /// The next two components in cyclic order, and the major one's magnitude.
-    s: F,
-    t: F,
-    major: F,
-}
-
-impl<F: Float> Face<F> {
-    /// From a canonical vector (whose largest component is at least 2, so never 0).
-    #[inline(always)]
-    fn of(w: V3<F>) -> Self {
-        let a = w.abs();
-        let z = a.z.ge(a.x).and(a.z.ge(a.y));
-        let y = a.y.ge(a.x);
-        let pick = { #[inline(always)] |zv: F, yv: F, xv: F| F::sel(z, zv, F::sel(y, yv, xv)) };
-        let major = pick(w.z, w.y, w.x).named("major");
-        let axis2 = pick(F::c(4.0), F::c(2.0), F::c(0.0));
-        let number = (axis2 + F::sel(major.lt(F::c(0.0)), F::c(1.0), F::c(0.0))).named("face");
-        Face {
-            number,
-            s: pick(w.x, w.z, w.y).named("s"),
-            t: pick(w.y, w.x, w.z).named("t"),
-            major: major.abs(),
-        }
-    }
-}
-
-/// The vector with major component `m` on face `f·unit` (`f` the face number 0–7 times
-/// `unit`) and coordinates `(s, t)` on it, placed by the face's axis and sign. The face
-/// is read by comparisons with half-way thresholds, so the decoder never scales its
-/// dequantized `face/7` back by a literal (which a driver would fold into the
-/// dequantization's own product).
-#[inline(always)]
-fn placed<F: Float>(f: F, unit: f64, m: F, s: F, t: F) -> V3<F> {
-    let at = { #[inline(always)] |k: f64| F::c((k * unit) as f32) };
-    let on_z = f.ge(at(3.5));
-    let on_y = f.ge(at(1.5));
-    let within = F::sel(on_z, f - at(4.0), F::sel(on_y, f - at(2.0), f));
-    let within = F::sel(within.ge(at(1.5)), within - at(2.0), within);
-    let m = F::sel(within.gt(at(0.5)), -m, m);
-    let pick = { #[inline(always)] |zv: F, yv: F, xv: F| F::sel(on_z, zv, F::sel(on_y, yv, xv)) };
-    V3::new(pick(s, t, m), pick(t, m, s), pick(m, s, t))
-}
 
 impl Cube {
     /// The plain cube codec with the given total bit budget; an invalid size is an error

@@ -190,6 +190,7 @@ pub fn emitted<P: Params<Encl> + 'static>(
             unread: &[],
             fixed: Vec::new(),
             budget: Some(FRAME_BUDGET),
+            parts: None,
         })
     };
     let codes = Arc::new(codes);

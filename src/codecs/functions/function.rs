@@ -222,6 +222,10 @@ pub struct Enclose {
     /// [`crate::measure::decode_bound::BUDGET`]: a decoder whose enclosures over boxes stay wider
     /// than a single code's never stops earlier, so it spends whatever it is given.
     pub budget: Option<usize>,
+    /// The ranges the boxes are drawn from where they are not the code's fields: the
+    /// parts a decoder splits its code into by integer operations alone
+    /// ([`crate::codecs::Codec::proof_parts`]), which `eval` then takes.
+    pub parts: Option<Vec<(i64, i64)>>,
 }
 
 /// The traced module and the public functions of one spec.

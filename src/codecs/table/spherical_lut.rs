@@ -497,6 +497,7 @@ fn emitted(spec_id: &str, lut: SphericalLut, precise: bool) -> Emitted {
         unread: &[],
         fixed: Vec::new(),
         budget: None,
+        parts: None,
     });
     let atan_lookup: WordsMap = Arc::new(move |t: &[u32]| vec![atan_fetch(lut, t).to_bits()]);
     let fast_cpu = through_table(

@@ -119,7 +119,13 @@ pub fn sincos_pi<F: Float>(t: F) -> V2<F> {
 /// so nothing can be fused into it: a function of `a` alone.
 #[inline(always)]
 pub fn angle_code<F: Float>(q: Quant, a: F, offset: f32) -> F {
-    let m = q.max_code();
+    angle_level(q.max_code(), a, offset)
+}
+
+/// [`angle_code`] onto the levels `0..=m` of any count (`m < 2^24`), not only a field's
+/// `2^b - 1`: a cube face's side in a combined index.
+#[inline(always)]
+pub fn angle_level<F: Float>(m: f32, a: F, offset: f32) -> F {
     let scaled = (a + F::c(ONE as f32)) * F::c((f64::from(m) / (2.0 * ONE)) as f32);
     let c = if offset < 1.0 {
         scaled.round()
