@@ -85,7 +85,7 @@ pub fn list_text_of(catalogue: &Catalogue) -> String {
     s.push_str(&format!(
         "\nA spec is {GRAMMAR}: oct24p, snorm8x3, stereo_scaled16:scale=2, oct24:layout=rgb8.\n"
     ));
-    s.push_str(&super::choose::legend(&catalogue));
+    s.push_str(&super::choose::legend(catalogue));
     s
 }
 

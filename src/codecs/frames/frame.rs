@@ -6,15 +6,18 @@
 //! return the struct [`FRAME`] of `n` (vec3) and `t` (vec4, `w` = ±1), so that a vertex
 //! shader passes `t` on as a glTF tangent attribute would be.
 
-use crate::codecs::core::codec::Params;
+use crate::codecs::core::codec::{Params, dequantize, unpack};
+use crate::codecs::core::spec::Spec;
 use crate::codecs::functions::decode_boxes::{fetched_range, field_codes};
 use crate::codecs::functions::function::{Emitted, Enclose, Function, Inputs, Role};
-use crate::codecs::functions::words::{chained, generic_function};
-use crate::codecs::core::spec::Spec;
+use crate::codecs::functions::words::{Bits, Lanes, Lanes8, chained, generic_function};
 use crate::codecs::toolkit::quant::Quant;
+use crate::model::avx2_lanes::F8;
+use crate::model::deviant::Dev;
 use crate::model::enclosure::Encl;
-use crate::model::trace::{Module, Shape};
-use crate::model::{Bool, Float, V3, V4};
+use crate::model::lanes::F4;
+use crate::model::trace::{Module, Shape, Tf, Tu, Value, define, define_fields, trace_module};
+use crate::model::{Bool, Float, V2, V3, V4};
 use std::sync::Arc;
 
 /// The struct every frame decoder returns: `n` and `t` (with the sign in `w`).
@@ -52,6 +55,90 @@ pub fn tbn_function(decode: &Function) -> Function {
         <F> [] |f: (V3<F>, V4<F>)| tbn(f)
     );
     chained(TBN_DECODER, Role::Decode, decode.inputs.clone(), decode, &step)
+}
+
+/// A frame format stored as its float form's fields, whose packed decoder is that float
+/// form on the fetched fields (Filament's qtangent64, Godot's axis-angle): its five
+/// functions are declared once, for every such format, by [`field_frame_emitted`].
+pub trait FieldFrame: 'static {
+    /// The float form: one value per field.
+    type P<F: Float>: Params<F>;
+    /// The fields, packed in two words.
+    const QUANTS: &'static [Quant];
+    /// The float form's parameter, as the emitted code names it.
+    const PARAM: &'static str;
+    /// The frame of the float form: `decode_float`.
+    fn frame<F: Float>(p: Self::P<F>) -> (V3<F>, V4<F>);
+    /// The float form of a frame: `encode_float`.
+    fn encode_float<F: Float>(n: V3<F>, t: V4<F>) -> Self::P<F>;
+    /// The packed code of a frame: `encode`.
+    fn encode<F: Float>(n: V3<F>, t: V4<F>) -> V2<F::U>;
+}
+
+/// The packed decoder of a [`FieldFrame`]: the fields fetched, then its float form.
+#[inline(always)]
+pub fn field_decode<C: FieldFrame, F: Float>(code: V2<F::U>) -> (V3<F>, V4<F>) {
+    let p: C::P<F> = dequantize(C::QUANTS, unpack::<F, C::P<F>, V2<F::U>>(C::QUANTS, code));
+    C::frame(p.named_p(C::PARAM))
+}
+
+/// A [`FieldFrame`]'s [`Emitted`]: `decode_float`, `decode`, `decode_tbn`, `encode_float`
+/// and `encode`, traced and evaluated from the same declarations.
+pub(crate) fn field_frame_emitted<C: FieldFrame>(spec: &Spec) -> Emitted
+where
+    C::P<f32>: Bits,
+    C::P<Dev>: Bits,
+    C::P<F4>: Bits<Lanes>,
+    C::P<F8>: Bits<Lanes8>,
+    C::P<Tf>: Value,
+{
+    let module = trace_module(|| {
+        define_fields("decode_float", &[C::PARAM], FRAME, |p: C::P<Tf>| C::frame(p));
+        define_fields("decode", &["code"], FRAME, |c: V2<Tu>| field_decode::<C, Tf>(c));
+        define_fields(TBN_DECODER, &["code"], TBN, |c: V2<Tu>| {
+            tbn(field_decode::<C, Tf>(c))
+        });
+        define("encode_float", &["n", "t"], |(n, t): (V3<Tf>, V4<Tf>)| {
+            C::encode_float(n, t)
+        });
+        define("encode", &["n", "t"], |(n, t): (V3<Tf>, V4<Tf>)| C::encode(n, t));
+    });
+    let mut functions = vec![
+        generic_function!(
+            "decode_float",
+            Role::DecodeFloat,
+            Inputs::FloatCodes(C::QUANTS.to_vec()),
+            <F> [] |p: C::P<F>| C::frame(p)
+        ),
+        generic_function!(
+            "decode",
+            Role::Decode,
+            Inputs::Codes(C::QUANTS.to_vec()),
+            <F> [] |c: V2<<F as Float>::U>| field_decode::<C, F>(c)
+        ),
+        generic_function!(
+            "encode_float",
+            Role::EncodeFloat,
+            Inputs::Frames,
+            <F> [] |f: (V3<F>, V4<F>)| C::encode_float(f.0, f.1)
+        ),
+        generic_function!(
+            "encode",
+            Role::Encode,
+            Inputs::Frames,
+            <F> [] |f: (V3<F>, V4<F>)| C::encode(f.0, f.1)
+        ),
+    ];
+    functions.push(tbn_function(&functions[1]));
+    emitted(
+        spec,
+        module,
+        functions,
+        C::QUANTS,
+        Some(|p: C::P<Encl>| C::frame(p)),
+        |c: C::P<Encl>| C::frame(dequantize(C::QUANTS, c)),
+        false,
+    )
 }
 
 /// The doc comment of a frame family's `decode_tbn`.

@@ -28,21 +28,18 @@
 //! model's [`sincos_pi`] (within `2.5·10^-7` of the exact values) rather than a driver's
 //! `cos(angle·π)`: the same frame to that precision, and the same bits on every path.
 
-use crate::codecs::core::codec::{dequantize, pack, unpack};
-use crate::codecs::functions::function::{Emitted, Inputs, Role};
+use crate::codecs::core::codec::pack;
+use crate::codecs::functions::function::Emitted;
 use crate::codecs::core::ieee;
 use crate::codecs::core::info::{Info, Sizes, FloatForm};
 use crate::codecs::core::spec::{Family, Spec, Tracing};
-use crate::codecs::functions::words::generic_function;
 use crate::codecs::frames::frame::{
-    FRAME, TBN, canonical_tangent, cross, handedness, policy_normal, tbn, TBN_DECODER, tbn_doc, tbn_function, usable,
+    FieldFrame, TBN_DECODER, canonical_tangent, cross, field_frame_emitted, handedness, policy_normal, tbn_doc, usable,
 };
 use crate::codecs::toolkit::quant::Quant;
 use crate::codecs::toolkit::trig::sincos_pi;
 use crate::model::num::helper;
-use crate::model::trace::{Tf, Tu, define, define_fields, trace_module};
 use crate::model::{Bool, Float, Lane, Uint, V2, V3, V4};
-use crate::model::enclosure::Encl;
 use std::f64::consts::PI;
 
 /// The stored fields: the axis's two octahedral coordinates and the angle, unorm16 each.
@@ -76,7 +73,7 @@ impl Family for GodotAxisAngle {
         false
     }
     fn emitted(&self, spec: &Spec, _: Tracing) -> Emitted {
-        emitted(spec)
+        field_frame_emitted::<GodotAxisAngle>(spec)
     }
     fn engine(&self, _spec: &Spec) -> Option<&'static str> {
         Some("Godot")
@@ -468,57 +465,22 @@ pub fn axis_angle_to_frame<F: Float>(f: V3<F>) -> (V3<F>, V4<F>) {
     (n, t)
 }
 
-/// The packed decoder: the three unorm16 fields fetched, then [`axis_angle_to_frame`].
-#[inline(always)]
-pub fn decode<F: Float>(code: V2<F::U>) -> (V3<F>, V4<F>) {
-    let f: V3<F> = dequantize(&QUANTS, unpack::<F, V3<F>, V2<F::U>>(&QUANTS, code)).named("f");
-    axis_angle_to_frame(f)
-}
-
-fn emitted(spec: &Spec) -> Emitted {
-    let module = trace_module(|| {
-        define_fields("decode_float", &["f"], FRAME, |f: V3<Tf>| axis_angle_to_frame(f));
-        define_fields("decode", &["code"], FRAME, |c: V2<Tu>| decode::<Tf>(c));
-        define_fields(TBN_DECODER, &["code"], TBN, |c: V2<Tu>| tbn(decode::<Tf>(c)));
-        define("encode_float", &["n", "t"], |(n, t): (V3<Tf>, V4<Tf>)| {
-            axis_angle_fields(n, t)
-        });
-        define("encode", &["n", "t"], |(n, t): (V3<Tf>, V4<Tf>)| encode(n, t));
-    });
-    let mut functions = vec![
-        generic_function!(
-            "decode_float",
-            Role::DecodeFloat,
-            Inputs::FloatCodes(QUANTS.to_vec()),
-            <F> [] |f: V3<F>| axis_angle_to_frame(f)
-        ),
-        generic_function!(
-            "decode",
-            Role::Decode,
-            Inputs::Codes(QUANTS.to_vec()),
-            <F> [] |c: V2<<F as Float>::U>| decode::<F>(c)
-        ),
-        generic_function!(
-            "encode_float",
-            Role::EncodeFloat,
-            Inputs::Frames,
-            <F> [] |f: (V3<F>, V4<F>)| axis_angle_fields(f.0, f.1)
-        ),
-        generic_function!(
-            "encode",
-            Role::Encode,
-            Inputs::Frames,
-            <F> [] |f: (V3<F>, V4<F>)| encode(f.0, f.1)
-        ),
-    ];
-    functions.push(tbn_function(&functions[1]));
-    crate::codecs::frames::frame::emitted(
-        spec,
-        module,
-        functions,
-        &QUANTS,
-        Some(|p: V3<Encl>| axis_angle_to_frame(p)),
-        |c: V3<Encl>| axis_angle_to_frame(dequantize(&QUANTS, c)),
-        false,
-    )
+/// Godot's frame as its three unorm16 fields: the packed decoder is
+/// [`axis_angle_to_frame`] on the fetched fields.
+impl FieldFrame for GodotAxisAngle {
+    type P<F: Float> = V3<F>;
+    const QUANTS: &'static [Quant] = &QUANTS;
+    const PARAM: &'static str = "f";
+    #[inline(always)]
+    fn frame<F: Float>(f: V3<F>) -> (V3<F>, V4<F>) {
+        axis_angle_to_frame(f)
+    }
+    #[inline(always)]
+    fn encode_float<F: Float>(n: V3<F>, t: V4<F>) -> V3<F> {
+        axis_angle_fields(n, t)
+    }
+    #[inline(always)]
+    fn encode<F: Float>(n: V3<F>, t: V4<F>) -> V2<F::U> {
+        encode(n, t)
+    }
 }

@@ -25,10 +25,10 @@ use crate::codecs::functions::function::{Emitted, Inputs, Role};
 use crate::model::enclosure::Encl;
 use crate::codecs::core::info::{Info, Sizes, FloatForm};
 use crate::codecs::core::spec::{Family, Spec, Tracing};
-use crate::codecs::core::codec::{dequantize, pack, unpack};
+use crate::codecs::core::codec::pack;
 use crate::codecs::functions::words::generic_function;
 use crate::codecs::frames::frame::{
-    FRAME, TBN, TBN_DECODER, canonical_tangent, cross, dot, handedness, policy_normal, rotation_columns,
+    FieldFrame, FRAME, TBN, TBN_DECODER, canonical_tangent, cross, dot, field_frame_emitted, handedness, policy_normal, rotation_columns,
     tbn, tbn_doc, tbn_function, usable,
 };
 use crate::codecs::frames::smallest_three;
@@ -75,7 +75,7 @@ impl Family for QTangent {
         if spec.bits() == 32 {
             emitted32(spec)
         } else {
-            emitted(spec)
+            field_frame_emitted::<QTangent>(spec)
         }
     }
     fn engine(&self, spec: &Spec) -> Option<&'static str> {
@@ -232,60 +232,24 @@ pub fn to_tangent_frame<F: Float>(q: V4<F>) -> (V3<F>, V4<F>) {
 }
 
 
-/// The packed decoder: the four snorm16 fields fetched (`max(c·fl(1/32767), -1)`), then
-/// [`to_tangent_frame`], written out here (a helper returns one value, a frame two).
-#[inline(always)]
-pub fn decode<F: Float>(code: V2<F::U>) -> (V3<F>, V4<F>) {
-    let q: V4<F> = dequantize(&QUANTS, unpack::<F, V4<F>, V2<F::U>>(&QUANTS, code)).named("q");
-    to_tangent_frame(q)
-}
-
-fn emitted(spec: &Spec) -> Emitted {
-    let module = trace_module(|| {
-        define_fields("decode_float", &["q"], FRAME, |q: V4<Tf>| to_tangent_frame(q));
-        define_fields("decode", &["code"], FRAME, |c: V2<Tu>| decode::<Tf>(c));
-        define_fields(TBN_DECODER, &["code"], TBN, |c: V2<Tu>| tbn(decode::<Tf>(c)));
-        define("encode_float", &["n", "t"], |(n, t): (V3<Tf>, V4<Tf>)| {
-            pack_tangent_frame(n, t)
-        });
-        define("encode", &["n", "t"], |(n, t): (V3<Tf>, V4<Tf>)| encode(n, t));
-    });
-    let mut functions = vec![
-        generic_function!(
-            "decode_float",
-            Role::DecodeFloat,
-            Inputs::FloatCodes(QUANTS.to_vec()),
-            <F> [] |q: V4<F>| to_tangent_frame(q)
-        ),
-        generic_function!(
-            "decode",
-            Role::Decode,
-            Inputs::Codes(QUANTS.to_vec()),
-            <F> [] |c: V2<<F as Float>::U>| decode::<F>(c)
-        ),
-        generic_function!(
-            "encode_float",
-            Role::EncodeFloat,
-            Inputs::Frames,
-            <F> [] |f: (V3<F>, V4<F>)| pack_tangent_frame(f.0, f.1)
-        ),
-        generic_function!(
-            "encode",
-            Role::Encode,
-            Inputs::Frames,
-            <F> [] |f: (V3<F>, V4<F>)| encode(f.0, f.1)
-        ),
-    ];
-    functions.push(tbn_function(&functions[1]));
-    crate::codecs::frames::frame::emitted(
-        spec,
-        module,
-        functions,
-        &QUANTS,
-        Some(|p: V4<Encl>| to_tangent_frame(p)),
-        |c: V4<Encl>| to_tangent_frame(dequantize(&QUANTS, c)),
-        false,
-    )
+/// Filament's SHORT4 quaternion: the packed decoder is [`to_tangent_frame`] on the
+/// fetched fields.
+impl FieldFrame for QTangent {
+    type P<F: Float> = V4<F>;
+    const QUANTS: &'static [Quant] = &QUANTS;
+    const PARAM: &'static str = "q";
+    #[inline(always)]
+    fn frame<F: Float>(q: V4<F>) -> (V3<F>, V4<F>) {
+        to_tangent_frame(q)
+    }
+    #[inline(always)]
+    fn encode_float<F: Float>(n: V3<F>, t: V4<F>) -> V4<F> {
+        pack_tangent_frame(n, t)
+    }
+    #[inline(always)]
+    fn encode<F: Float>(n: V3<F>, t: V4<F>) -> V2<F::U> {
+        encode(n, t)
+    }
 }
 
 /// The doc comments of qtangent32's functions.
