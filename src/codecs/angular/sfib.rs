@@ -44,7 +44,8 @@ use crate::codecs::core::info::Domain;
 use crate::codecs::core::info::{Info, Sizes, FloatForm};
 use crate::codecs::core::codec_family::CodecFamily;
 use crate::codecs::core::pipeline::codec_functions;
-use crate::codecs::toolkit::quant::{Quant, Quants};
+use crate::codecs::toolkit::index::Halves;
+use crate::codecs::toolkit::quant::Quants;
 use crate::codecs::core::spec::SpecError;
 use crate::codecs::toolkit::exact::{canonical_or_z, fixed_length2, fixed_root, float_of, root, sum_of_squares};
 use crate::codecs::toolkit::fixed_decode::{BITS, ONE, fixed_target};
@@ -332,18 +333,8 @@ impl Sfib {
         best.expect("nine candidates").1
     }
 
-    /// The two fields of index `i`: its low and high halves.
-    #[inline(always)]
-    fn fields<F: Float>(&self, i: F::U) -> V2<F> {
-        let h = self.bits / 2;
-        V2::new((i & F::U::c((1 << h) - 1)).to_f(), i.shr(h).to_f())
-    }
-
-    /// The index of the two fields' codes (a sum, not an or: the same bits, and an
-    /// interval evaluation keeps a single code a single index).
-    #[inline(always)]
-    fn index<F: Float>(&self, codes: V2<F>) -> F::U {
-        codes.x.to_u() + codes.y.to_u().shl(self.bits / 2)
+    fn halves(&self) -> Halves {
+        Halves { bits: self.bits }
     }
 }
 
@@ -388,7 +379,7 @@ impl Codec for Sfib {
     type C<F: Float> = F::U;
     #[inline]
     fn quants(&self) -> Quants {
-        Quants::new(&[Quant::Unorm(self.bits / 2); 2])
+        self.halves().quants()
     }
     fn domain(&self) -> Domain {
         Domain::Sphere
@@ -396,19 +387,17 @@ impl Codec for Sfib {
     /// The chosen index's two fields as a texture fetch returns them (`c/M`).
     #[inline(always)]
     fn params<F: Float>(&self, v: V3<F>) -> V2<F> {
-        let m = self.quants()[0].max_code();
-        self.round_codes(v) * F::c(1.0 / m)
+        self.halves().fetched(self.round_codes(v))
     }
     /// The fields re-quantized (`round(p·M)`, exact for a fetched `c/M`), then the
     /// point of their index.
     #[inline(always)]
     fn direction<F: Float>(&self, p: V2<F>) -> V3<F> {
-        let m = self.quants()[0].max_code();
-        self.decode_codes((p * F::c(m)).round())
+        self.decode_codes(self.halves().codes(p))
     }
     #[inline(always)]
     fn decode_codes<F: Float>(&self, codes: V2<F>) -> V3<F> {
-        let i = self.index(codes).named("i");
+        let i = self.halves().index(codes).named("i");
         helper!(self.index_direction(i))
     }
     /// [`Sfib::encode_index`], which no implementation's rounding latitude can change.
@@ -416,6 +405,6 @@ impl Codec for Sfib {
     #[inline(always)]
     fn round_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
         let i = helper!(self.encode_index(v)).named("i");
-        self.fields(i)
+        self.halves().fields(i)
     }
 }

@@ -15,7 +15,8 @@
 //! 128 × 64 levels a face instead of 104 × 104).
 //!
 //! Layout: like [`sfib`](crate::codecs::angular::sfib)'s index, the low `B/2` bits in the
-//! first field and the high `B/2` in the second (both unorm), so the packed word is `i`.
+//! first field and the high `B/2` in the second (both unorm), so the packed word is `i`
+//! ([`Halves`]).
 //!
 //! The encoder's angles come from the model's fixed-point arctangent
 //! ([`fixed_trig::atan2_pi`]) and the index is formed in 32-bit integers, so every
@@ -32,7 +33,8 @@ use crate::codecs::core::spec::SpecError;
 use crate::codecs::cube_maps::faces::{Face, placed};
 use crate::codecs::toolkit::exact::{canonical_or_z, float_of};
 use crate::codecs::toolkit::fixed_trig;
-use crate::codecs::toolkit::quant::{Quant, Quants};
+use crate::codecs::toolkit::index::Halves;
+use crate::codecs::toolkit::quant::Quants;
 use crate::codecs::toolkit::trig::sincos_pi;
 use crate::model::enclosure::Encl;
 use crate::model::num::helper;
@@ -88,18 +90,8 @@ impl Eac {
         6 * u64::from(self.side()).pow(2)
     }
 
-    /// The two fields' codes of index `i`: its low and its high half.
-    #[inline(always)]
-    fn fields<F: Float>(&self, i: F::U) -> V2<F> {
-        let h = self.bits / 2;
-        V2::new((i & F::U::c((1 << h) - 1)).to_f(), i.shr(h).to_f())
-    }
-
-    /// The index of the two fields' codes (a sum, not an or: an interval evaluation keeps
-    /// a single code a single index).
-    #[inline(always)]
-    fn index<F: Float>(&self, codes: V2<F>) -> F::U {
-        codes.x.to_u() + codes.y.to_u().shl(self.bits / 2)
+    fn halves(&self) -> Halves {
+        Halves { bits: self.bits }
     }
 
     /// Face, row and column of index `i`, as exact integers in floats. Only integer
@@ -163,7 +155,7 @@ impl Codec for Eac {
     type C<F: Float> = F::U;
     #[inline]
     fn quants(&self) -> Quants {
-        Quants::new(&[Quant::Unorm(self.bits / 2); 2])
+        self.halves().quants()
     }
     fn domain(&self) -> Domain {
         Domain::Sphere
@@ -171,15 +163,13 @@ impl Codec for Eac {
     /// The index's two fields as a texture fetch returns them (`c/M`).
     #[inline(always)]
     fn params<F: Float>(&self, v: V3<F>) -> V2<F> {
-        let m = self.quants()[0].max_code();
-        self.round_codes(v) * F::c(1.0 / m)
+        self.halves().fetched(self.round_codes(v))
     }
     /// The fields re-quantized (`round(p·M)`, exact for a fetched `c/M`), then the point
     /// of their index.
     #[inline(always)]
     fn direction<F: Float>(&self, p: V2<F>) -> V3<F> {
-        let m = self.quants()[0].max_code();
-        self.decode_codes((p * F::c(m)).round())
+        self.decode_codes(self.halves().codes(p))
     }
     /// Face, row and column, which [`Eac::split`] computes by integer operations alone.
     fn proof_parts(&self) -> Option<Vec<(i64, i64)>> {
@@ -191,7 +181,7 @@ impl Codec for Eac {
     }
     #[inline(always)]
     fn decode_codes<F: Float>(&self, codes: V2<F>) -> V3<F> {
-        self.index_direction(self.index(codes).named("i"))
+        self.index_direction(self.halves().index(codes).named("i"))
     }
     /// The face of the canonical input, each coordinate's angle `atan2(n, major)/π` in
     /// units of `2^-23` ([`fixed_trig::atan2_pi`]) times 4 put on the `N` levels
@@ -208,6 +198,6 @@ impl Codec for Eac {
         let (s, t) = (level(f.s), level(f.t));
         let n = F::U::c(n);
         let i = (f.number.to_u().wrapping_mul(n) + t).wrapping_mul(n) + s;
-        self.fields(i.named("i"))
+        self.halves().fields(i.named("i"))
     }
 }

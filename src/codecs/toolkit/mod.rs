@@ -15,7 +15,8 @@
 //! | [`lattice`], [`fixed_decode`] | the precise (nearest-code) search in integer or fixed-point arithmetic |
 //!
 //! The rest: [`quant`] (scalar quantization, survey eqs. 1–2, and bit-field packing),
-//! [`half`] (binary16 fields without pack builtins) and [`trig`] (the model's own polynomial
+//! [`half`] (binary16 fields without pack builtins), [`index`] (a point's index in two
+//! fields) and [`trig`] (the model's own polynomial
 //! trigonometry for decoders). Nothing here names `core`: the toolkit is the layer below it.
 //!
 //! # Example: `oct`'s packed encoder
@@ -43,6 +44,7 @@ pub mod exact;
 pub mod fixed_decode;
 pub mod fixed_trig;
 pub mod half;
+pub mod index;
 pub mod lattice;
 pub mod quant;
 pub mod trig;
