@@ -97,29 +97,24 @@ static inline unitpack_vec3 unitpack_eac16_decode_float_v(unitpack_vec2 params) 
     const uint32_t t13 = t12 + 1u;
     const uint32_t row = r < t13 * 104u ? t12 : t13;
     const uint32_t column = r - row * 104u;
-    const float row_f = (float)row;
-    const float t14 = row_f >= 0.0f ? row_f : 0.0f;
-    const float t15 = (float)(column >> 12u) * 4096.0f;
-    const float t16 = t15 + (float)(column & 0xfffu);
-    const float t17 = t16 >= 0.0f ? t16 : 0.0f;
-    const float t18 = (t17 <= 103.0f ? t17 : 103.0f) * 0.004854369f;
-    const unitpack_vec2 cs = unitpack_eac16_sincos_pi_v(t18 - 0.25f);
-    const float t19 = (t14 <= 103.0f ? t14 : 103.0f) * 0.004854369f;
-    const unitpack_vec2 ct = unitpack_eac16_sincos_pi_v(t19 - 0.25f);
+    const float t14 = (float)column * 0.004854369f;
+    const unitpack_vec2 cs = unitpack_eac16_sincos_pi_v(t14 - 0.25f);
+    const float t15 = (float)row * 0.004854369f;
+    const unitpack_vec2 ct = unitpack_eac16_sincos_pi_v(t15 - 0.25f);
     const unitpack_vec3 d = { cs.x * ct.y, ct.x * cs.y, cs.y * ct.y };
     const unitpack_vec3 d_sq = { d.x * d.x, d.y * d.y, d.z * d.z };
-    const float t20 = sqrtf(d_sq.x + d_sq.y + d_sq.z);
-    const unitpack_vec3 u = { d.x / t20, d.y / t20, d.z / t20 };
-    const bool t21 = face >= 3.5f;
-    const bool t22 = face >= 1.5f;
-    const float t23 = t21 ? face - 4.0f : (t22 ? face - 2.0f : face);
-    const float t24 = (t23 >= 1.5f ? t23 - 2.0f : t23) > 0.5f ? -u.z : u.z;
-    const unitpack_vec3 t25 = {
-        t21 ? u.x : (t22 ? u.y : t24),
-        t21 ? u.y : (t22 ? t24 : u.x),
-        t21 ? t24 : (t22 ? u.x : u.y)
+    const float t16 = sqrtf(d_sq.x + d_sq.y + d_sq.z);
+    const unitpack_vec3 u = { d.x / t16, d.y / t16, d.z / t16 };
+    const bool t17 = face >= 3.5f;
+    const bool t18 = face >= 1.5f;
+    const float t19 = t17 ? face - 4.0f : (t18 ? face - 2.0f : face);
+    const float t20 = (t19 >= 1.5f ? t19 - 2.0f : t19) > 0.5f ? -u.z : u.z;
+    const unitpack_vec3 t21 = {
+        t17 ? u.x : (t18 ? u.y : t20),
+        t17 ? u.y : (t18 ? t20 : u.x),
+        t17 ? t20 : (t18 ? u.x : u.y)
     };
-    return t25;
+    return t21;
 }
 
 // unitpack_eac16_decode_float: decoder, float form.
@@ -162,29 +157,24 @@ static inline unitpack_vec3 unitpack_eac16_decode_v(uint32_t code) {
     const uint32_t t13 = t12 + 1u;
     const uint32_t row = r < t13 * 104u ? t12 : t13;
     const uint32_t column = r - row * 104u;
-    const float row_f = (float)row;
-    const float t14 = row_f >= 0.0f ? row_f : 0.0f;
-    const float t15 = (float)(column >> 12u) * 4096.0f;
-    const float t16 = t15 + (float)(column & 0xfffu);
-    const float t17 = t16 >= 0.0f ? t16 : 0.0f;
-    const float t18 = (t17 <= 103.0f ? t17 : 103.0f) * 0.004854369f;
-    const unitpack_vec2 cs = unitpack_eac16_sincos_pi_v(t18 - 0.25f);
-    const float t19 = (t14 <= 103.0f ? t14 : 103.0f) * 0.004854369f;
-    const unitpack_vec2 ct = unitpack_eac16_sincos_pi_v(t19 - 0.25f);
+    const float t14 = (float)column * 0.004854369f;
+    const unitpack_vec2 cs = unitpack_eac16_sincos_pi_v(t14 - 0.25f);
+    const float t15 = (float)row * 0.004854369f;
+    const unitpack_vec2 ct = unitpack_eac16_sincos_pi_v(t15 - 0.25f);
     const unitpack_vec3 d = { cs.x * ct.y, ct.x * cs.y, cs.y * ct.y };
     const unitpack_vec3 d_sq = { d.x * d.x, d.y * d.y, d.z * d.z };
-    const float t20 = sqrtf(d_sq.x + d_sq.y + d_sq.z);
-    const unitpack_vec3 u = { d.x / t20, d.y / t20, d.z / t20 };
-    const bool t21 = face >= 3.5f;
-    const bool t22 = face >= 1.5f;
-    const float t23 = t21 ? face - 4.0f : (t22 ? face - 2.0f : face);
-    const float t24 = (t23 >= 1.5f ? t23 - 2.0f : t23) > 0.5f ? -u.z : u.z;
-    const unitpack_vec3 t25 = {
-        t21 ? u.x : (t22 ? u.y : t24),
-        t21 ? u.y : (t22 ? t24 : u.x),
-        t21 ? t24 : (t22 ? u.x : u.y)
+    const float t16 = sqrtf(d_sq.x + d_sq.y + d_sq.z);
+    const unitpack_vec3 u = { d.x / t16, d.y / t16, d.z / t16 };
+    const bool t17 = face >= 3.5f;
+    const bool t18 = face >= 1.5f;
+    const float t19 = t17 ? face - 4.0f : (t18 ? face - 2.0f : face);
+    const float t20 = (t19 >= 1.5f ? t19 - 2.0f : t19) > 0.5f ? -u.z : u.z;
+    const unitpack_vec3 t21 = {
+        t17 ? u.x : (t18 ? u.y : t20),
+        t17 ? u.y : (t18 ? t20 : u.x),
+        t17 ? t20 : (t18 ? u.x : u.y)
     };
-    return t25;
+    return t21;
 }
 
 // unitpack_eac16_decode: decoder.

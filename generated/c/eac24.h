@@ -105,29 +105,24 @@ static inline unitpack_vec3 unitpack_eac24_decode_float_v(unitpack_vec2 params) 
     const uint32_t t21 = t20 + 1u;
     const uint32_t row = r < t21 * 1672u ? t20 : t21;
     const uint32_t column = r - row * 1672u;
-    const float row_f = (float)row;
-    const float t22 = row_f >= 0.0f ? row_f : 0.0f;
-    const float t23 = (float)(column >> 12u) * 4096.0f;
-    const float t24 = t23 + (float)(column & 0xfffu);
-    const float t25 = t24 >= 0.0f ? t24 : 0.0f;
-    const float t26 = (t25 <= 1671.0f ? t25 : 1671.0f) * 0.000299222f;
-    const unitpack_vec2 cs = unitpack_eac24_sincos_pi_v(t26 - 0.25f);
-    const float t27 = (t22 <= 1671.0f ? t22 : 1671.0f) * 0.000299222f;
-    const unitpack_vec2 ct = unitpack_eac24_sincos_pi_v(t27 - 0.25f);
+    const float t22 = (float)column * 0.000299222f;
+    const unitpack_vec2 cs = unitpack_eac24_sincos_pi_v(t22 - 0.25f);
+    const float t23 = (float)row * 0.000299222f;
+    const unitpack_vec2 ct = unitpack_eac24_sincos_pi_v(t23 - 0.25f);
     const unitpack_vec3 d = { cs.x * ct.y, ct.x * cs.y, cs.y * ct.y };
     const unitpack_vec3 d_sq = { d.x * d.x, d.y * d.y, d.z * d.z };
-    const float t28 = sqrtf(d_sq.x + d_sq.y + d_sq.z);
-    const unitpack_vec3 u = { d.x / t28, d.y / t28, d.z / t28 };
-    const bool t29 = face >= 3.5f;
-    const bool t30 = face >= 1.5f;
-    const float t31 = t29 ? face - 4.0f : (t30 ? face - 2.0f : face);
-    const float t32 = (t31 >= 1.5f ? t31 - 2.0f : t31) > 0.5f ? -u.z : u.z;
-    const unitpack_vec3 t33 = {
-        t29 ? u.x : (t30 ? u.y : t32),
-        t29 ? u.y : (t30 ? t32 : u.x),
-        t29 ? t32 : (t30 ? u.x : u.y)
+    const float t24 = sqrtf(d_sq.x + d_sq.y + d_sq.z);
+    const unitpack_vec3 u = { d.x / t24, d.y / t24, d.z / t24 };
+    const bool t25 = face >= 3.5f;
+    const bool t26 = face >= 1.5f;
+    const float t27 = t25 ? face - 4.0f : (t26 ? face - 2.0f : face);
+    const float t28 = (t27 >= 1.5f ? t27 - 2.0f : t27) > 0.5f ? -u.z : u.z;
+    const unitpack_vec3 t29 = {
+        t25 ? u.x : (t26 ? u.y : t28),
+        t25 ? u.y : (t26 ? t28 : u.x),
+        t25 ? t28 : (t26 ? u.x : u.y)
     };
-    return t33;
+    return t29;
 }
 
 // unitpack_eac24_decode_float: decoder, float form.
@@ -178,29 +173,24 @@ static inline unitpack_vec3 unitpack_eac24_decode_v(uint32_t code) {
     const uint32_t t21 = t20 + 1u;
     const uint32_t row = r < t21 * 1672u ? t20 : t21;
     const uint32_t column = r - row * 1672u;
-    const float row_f = (float)row;
-    const float t22 = row_f >= 0.0f ? row_f : 0.0f;
-    const float t23 = (float)(column >> 12u) * 4096.0f;
-    const float t24 = t23 + (float)(column & 0xfffu);
-    const float t25 = t24 >= 0.0f ? t24 : 0.0f;
-    const float t26 = (t25 <= 1671.0f ? t25 : 1671.0f) * 0.000299222f;
-    const unitpack_vec2 cs = unitpack_eac24_sincos_pi_v(t26 - 0.25f);
-    const float t27 = (t22 <= 1671.0f ? t22 : 1671.0f) * 0.000299222f;
-    const unitpack_vec2 ct = unitpack_eac24_sincos_pi_v(t27 - 0.25f);
+    const float t22 = (float)column * 0.000299222f;
+    const unitpack_vec2 cs = unitpack_eac24_sincos_pi_v(t22 - 0.25f);
+    const float t23 = (float)row * 0.000299222f;
+    const unitpack_vec2 ct = unitpack_eac24_sincos_pi_v(t23 - 0.25f);
     const unitpack_vec3 d = { cs.x * ct.y, ct.x * cs.y, cs.y * ct.y };
     const unitpack_vec3 d_sq = { d.x * d.x, d.y * d.y, d.z * d.z };
-    const float t28 = sqrtf(d_sq.x + d_sq.y + d_sq.z);
-    const unitpack_vec3 u = { d.x / t28, d.y / t28, d.z / t28 };
-    const bool t29 = face >= 3.5f;
-    const bool t30 = face >= 1.5f;
-    const float t31 = t29 ? face - 4.0f : (t30 ? face - 2.0f : face);
-    const float t32 = (t31 >= 1.5f ? t31 - 2.0f : t31) > 0.5f ? -u.z : u.z;
-    const unitpack_vec3 t33 = {
-        t29 ? u.x : (t30 ? u.y : t32),
-        t29 ? u.y : (t30 ? t32 : u.x),
-        t29 ? t32 : (t30 ? u.x : u.y)
+    const float t24 = sqrtf(d_sq.x + d_sq.y + d_sq.z);
+    const unitpack_vec3 u = { d.x / t24, d.y / t24, d.z / t24 };
+    const bool t25 = face >= 3.5f;
+    const bool t26 = face >= 1.5f;
+    const float t27 = t25 ? face - 4.0f : (t26 ? face - 2.0f : face);
+    const float t28 = (t27 >= 1.5f ? t27 - 2.0f : t27) > 0.5f ? -u.z : u.z;
+    const unitpack_vec3 t29 = {
+        t25 ? u.x : (t26 ? u.y : t28),
+        t25 ? u.y : (t26 ? t28 : u.x),
+        t25 ? t28 : (t26 ? u.x : u.y)
     };
-    return t33;
+    return t29;
 }
 
 // unitpack_eac24_decode: decoder.

@@ -113,29 +113,24 @@ static inline unitpack_vec3 unitpack_eac32_decode_float_v(unitpack_vec2 params) 
     const uint32_t t29 = t28 + 1u;
     const uint32_t row = r < t29 * 26754u ? t28 : t29;
     const uint32_t column = r - row * 26754u;
-    const float row_f = (float)row;
-    const float t30 = row_f >= 0.0f ? row_f : 0.0f;
-    const float t31 = (float)(column >> 12u) * 4096.0f;
-    const float t32 = t31 + (float)(column & 0xfffu);
-    const float t33 = t32 >= 0.0f ? t32 : 0.0f;
-    const float t34 = (t33 <= 26753.0f ? t33 : 26753.0f) * 1.8689492e-5f;
-    const unitpack_vec2 cs = unitpack_eac32_sincos_pi_v(t34 - 0.25f);
-    const float t35 = (t30 <= 26753.0f ? t30 : 26753.0f) * 1.8689492e-5f;
-    const unitpack_vec2 ct = unitpack_eac32_sincos_pi_v(t35 - 0.25f);
+    const float t30 = (float)column * 1.8689492e-5f;
+    const unitpack_vec2 cs = unitpack_eac32_sincos_pi_v(t30 - 0.25f);
+    const float t31 = (float)row * 1.8689492e-5f;
+    const unitpack_vec2 ct = unitpack_eac32_sincos_pi_v(t31 - 0.25f);
     const unitpack_vec3 d = { cs.x * ct.y, ct.x * cs.y, cs.y * ct.y };
     const unitpack_vec3 d_sq = { d.x * d.x, d.y * d.y, d.z * d.z };
-    const float t36 = sqrtf(d_sq.x + d_sq.y + d_sq.z);
-    const unitpack_vec3 u = { d.x / t36, d.y / t36, d.z / t36 };
-    const bool t37 = face >= 3.5f;
-    const bool t38 = face >= 1.5f;
-    const float t39 = t37 ? face - 4.0f : (t38 ? face - 2.0f : face);
-    const float t40 = (t39 >= 1.5f ? t39 - 2.0f : t39) > 0.5f ? -u.z : u.z;
-    const unitpack_vec3 t41 = {
-        t37 ? u.x : (t38 ? u.y : t40),
-        t37 ? u.y : (t38 ? t40 : u.x),
-        t37 ? t40 : (t38 ? u.x : u.y)
+    const float t32 = sqrtf(d_sq.x + d_sq.y + d_sq.z);
+    const unitpack_vec3 u = { d.x / t32, d.y / t32, d.z / t32 };
+    const bool t33 = face >= 3.5f;
+    const bool t34 = face >= 1.5f;
+    const float t35 = t33 ? face - 4.0f : (t34 ? face - 2.0f : face);
+    const float t36 = (t35 >= 1.5f ? t35 - 2.0f : t35) > 0.5f ? -u.z : u.z;
+    const unitpack_vec3 t37 = {
+        t33 ? u.x : (t34 ? u.y : t36),
+        t33 ? u.y : (t34 ? t36 : u.x),
+        t33 ? t36 : (t34 ? u.x : u.y)
     };
-    return t41;
+    return t37;
 }
 
 // unitpack_eac32_decode_float: decoder, float form.
@@ -193,29 +188,24 @@ static inline unitpack_vec3 unitpack_eac32_decode_v(uint32_t code) {
     const uint32_t t29 = t28 + 1u;
     const uint32_t row = r < t29 * 26754u ? t28 : t29;
     const uint32_t column = r - row * 26754u;
-    const float row_f = (float)row;
-    const float t30 = row_f >= 0.0f ? row_f : 0.0f;
-    const float t31 = (float)(column >> 12u) * 4096.0f;
-    const float t32 = t31 + (float)(column & 0xfffu);
-    const float t33 = t32 >= 0.0f ? t32 : 0.0f;
-    const float t34 = (t33 <= 26753.0f ? t33 : 26753.0f) * 1.8689492e-5f;
-    const unitpack_vec2 cs = unitpack_eac32_sincos_pi_v(t34 - 0.25f);
-    const float t35 = (t30 <= 26753.0f ? t30 : 26753.0f) * 1.8689492e-5f;
-    const unitpack_vec2 ct = unitpack_eac32_sincos_pi_v(t35 - 0.25f);
+    const float t30 = (float)column * 1.8689492e-5f;
+    const unitpack_vec2 cs = unitpack_eac32_sincos_pi_v(t30 - 0.25f);
+    const float t31 = (float)row * 1.8689492e-5f;
+    const unitpack_vec2 ct = unitpack_eac32_sincos_pi_v(t31 - 0.25f);
     const unitpack_vec3 d = { cs.x * ct.y, ct.x * cs.y, cs.y * ct.y };
     const unitpack_vec3 d_sq = { d.x * d.x, d.y * d.y, d.z * d.z };
-    const float t36 = sqrtf(d_sq.x + d_sq.y + d_sq.z);
-    const unitpack_vec3 u = { d.x / t36, d.y / t36, d.z / t36 };
-    const bool t37 = face >= 3.5f;
-    const bool t38 = face >= 1.5f;
-    const float t39 = t37 ? face - 4.0f : (t38 ? face - 2.0f : face);
-    const float t40 = (t39 >= 1.5f ? t39 - 2.0f : t39) > 0.5f ? -u.z : u.z;
-    const unitpack_vec3 t41 = {
-        t37 ? u.x : (t38 ? u.y : t40),
-        t37 ? u.y : (t38 ? t40 : u.x),
-        t37 ? t40 : (t38 ? u.x : u.y)
+    const float t32 = sqrtf(d_sq.x + d_sq.y + d_sq.z);
+    const unitpack_vec3 u = { d.x / t32, d.y / t32, d.z / t32 };
+    const bool t33 = face >= 3.5f;
+    const bool t34 = face >= 1.5f;
+    const float t35 = t33 ? face - 4.0f : (t34 ? face - 2.0f : face);
+    const float t36 = (t35 >= 1.5f ? t35 - 2.0f : t35) > 0.5f ? -u.z : u.z;
+    const unitpack_vec3 t37 = {
+        t33 ? u.x : (t34 ? u.y : t36),
+        t33 ? u.y : (t34 ? t36 : u.x),
+        t33 ? t36 : (t34 ? u.x : u.y)
     };
-    return t41;
+    return t37;
 }
 
 // unitpack_eac32_decode: decoder.

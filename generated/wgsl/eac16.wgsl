@@ -67,23 +67,19 @@ fn unitpack_eac16_decode_float(params: vec2<f32>) -> vec3<f32> {
     let t14 = t13 + 1u;
     let row = select(t14, t13, r < t14 * 104u);
     let column = r - row * 104u;
-    let row_f = f32(row);
-    let t15 = select(0.0f, row_f, row_f >= 0.0f);
-    let t16 = f32(column >> 12u) * 4096.0f + f32(column & 0xfffu);
-    let t17 = select(0.0f, t16, t16 >= 0.0f);
-    let cs = unitpack_eac16_sincos_pi(select(103.0f, t17, t17 <= 103.0f) * 0.004854369f - 0.25f);
-    let ct = unitpack_eac16_sincos_pi(select(103.0f, t15, t15 <= 103.0f) * 0.004854369f - 0.25f);
+    let cs = unitpack_eac16_sincos_pi(f32(column) * 0.004854369f - 0.25f);
+    let ct = unitpack_eac16_sincos_pi(f32(row) * 0.004854369f - 0.25f);
     let d = vec3<f32>(cs.x, ct.x, cs.y) * vec3<f32>(ct.y, cs.y, ct.y);
     let d_sq = d * d;
     let u = d / sqrt(d_sq.x + d_sq.y + d_sq.z);
-    let t18 = face >= 3.5f;
-    let t19 = face >= 1.5f;
-    let t20 = select(select(face, face - 2.0f, t19), face - 4.0f, t18);
-    let t21 = select(u.z, -u.z, select(t20, t20 - 2.0f, t20 >= 1.5f) > 0.5f);
+    let t15 = face >= 3.5f;
+    let t16 = face >= 1.5f;
+    let t17 = select(select(face, face - 2.0f, t16), face - 4.0f, t15);
+    let t18 = select(u.z, -u.z, select(t17, t17 - 2.0f, t17 >= 1.5f) > 0.5f);
     return select(
-        select(vec3<f32>(t21, u.xy), vec3<f32>(u.y, t21, u.x), t19),
-        vec3<f32>(u.xy, t21),
-        t18
+        select(vec3<f32>(t18, u.xy), vec3<f32>(u.y, t18, u.x), t16),
+        vec3<f32>(u.xy, t18),
+        t15
     );
 }
 
@@ -116,23 +112,19 @@ fn unitpack_eac16_decode(code: u32) -> vec3<f32> {
     let t14 = t13 + 1u;
     let row = select(t14, t13, r < t14 * 104u);
     let column = r - row * 104u;
-    let row_f = f32(row);
-    let t15 = select(0.0f, row_f, row_f >= 0.0f);
-    let t16 = f32(column >> 12u) * 4096.0f + f32(column & 0xfffu);
-    let t17 = select(0.0f, t16, t16 >= 0.0f);
-    let cs = unitpack_eac16_sincos_pi(select(103.0f, t17, t17 <= 103.0f) * 0.004854369f - 0.25f);
-    let ct = unitpack_eac16_sincos_pi(select(103.0f, t15, t15 <= 103.0f) * 0.004854369f - 0.25f);
+    let cs = unitpack_eac16_sincos_pi(f32(column) * 0.004854369f - 0.25f);
+    let ct = unitpack_eac16_sincos_pi(f32(row) * 0.004854369f - 0.25f);
     let d = vec3<f32>(cs.x, ct.x, cs.y) * vec3<f32>(ct.y, cs.y, ct.y);
     let d_sq = d * d;
     let u = d / sqrt(d_sq.x + d_sq.y + d_sq.z);
-    let t18 = face >= 3.5f;
-    let t19 = face >= 1.5f;
-    let t20 = select(select(face, face - 2.0f, t19), face - 4.0f, t18);
-    let t21 = select(u.z, -u.z, select(t20, t20 - 2.0f, t20 >= 1.5f) > 0.5f);
+    let t15 = face >= 3.5f;
+    let t16 = face >= 1.5f;
+    let t17 = select(select(face, face - 2.0f, t16), face - 4.0f, t15);
+    let t18 = select(u.z, -u.z, select(t17, t17 - 2.0f, t17 >= 1.5f) > 0.5f);
     return select(
-        select(vec3<f32>(t21, u.xy), vec3<f32>(u.y, t21, u.x), t19),
-        vec3<f32>(u.xy, t21),
-        t18
+        select(vec3<f32>(t18, u.xy), vec3<f32>(u.y, t18, u.x), t16),
+        vec3<f32>(u.xy, t18),
+        t15
     );
 }
 

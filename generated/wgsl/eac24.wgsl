@@ -75,23 +75,19 @@ fn unitpack_eac24_decode_float(params: vec2<f32>) -> vec3<f32> {
     let t22 = t21 + 1u;
     let row = select(t22, t21, r < t22 * 1672u);
     let column = r - row * 1672u;
-    let row_f = f32(row);
-    let t23 = select(0.0f, row_f, row_f >= 0.0f);
-    let t24 = f32(column >> 12u) * 4096.0f + f32(column & 0xfffu);
-    let t25 = select(0.0f, t24, t24 >= 0.0f);
-    let cs = unitpack_eac24_sincos_pi(select(1671.0f, t25, t25 <= 1671.0f) * 0.000299222f - 0.25f);
-    let ct = unitpack_eac24_sincos_pi(select(1671.0f, t23, t23 <= 1671.0f) * 0.000299222f - 0.25f);
+    let cs = unitpack_eac24_sincos_pi(f32(column) * 0.000299222f - 0.25f);
+    let ct = unitpack_eac24_sincos_pi(f32(row) * 0.000299222f - 0.25f);
     let d = vec3<f32>(cs.x, ct.x, cs.y) * vec3<f32>(ct.y, cs.y, ct.y);
     let d_sq = d * d;
     let u = d / sqrt(d_sq.x + d_sq.y + d_sq.z);
-    let t26 = face >= 3.5f;
-    let t27 = face >= 1.5f;
-    let t28 = select(select(face, face - 2.0f, t27), face - 4.0f, t26);
-    let t29 = select(u.z, -u.z, select(t28, t28 - 2.0f, t28 >= 1.5f) > 0.5f);
+    let t23 = face >= 3.5f;
+    let t24 = face >= 1.5f;
+    let t25 = select(select(face, face - 2.0f, t24), face - 4.0f, t23);
+    let t26 = select(u.z, -u.z, select(t25, t25 - 2.0f, t25 >= 1.5f) > 0.5f);
     return select(
-        select(vec3<f32>(t29, u.xy), vec3<f32>(u.y, t29, u.x), t27),
-        vec3<f32>(u.xy, t29),
-        t26
+        select(vec3<f32>(t26, u.xy), vec3<f32>(u.y, t26, u.x), t24),
+        vec3<f32>(u.xy, t26),
+        t23
     );
 }
 
@@ -132,23 +128,19 @@ fn unitpack_eac24_decode(code: u32) -> vec3<f32> {
     let t22 = t21 + 1u;
     let row = select(t22, t21, r < t22 * 1672u);
     let column = r - row * 1672u;
-    let row_f = f32(row);
-    let t23 = select(0.0f, row_f, row_f >= 0.0f);
-    let t24 = f32(column >> 12u) * 4096.0f + f32(column & 0xfffu);
-    let t25 = select(0.0f, t24, t24 >= 0.0f);
-    let cs = unitpack_eac24_sincos_pi(select(1671.0f, t25, t25 <= 1671.0f) * 0.000299222f - 0.25f);
-    let ct = unitpack_eac24_sincos_pi(select(1671.0f, t23, t23 <= 1671.0f) * 0.000299222f - 0.25f);
+    let cs = unitpack_eac24_sincos_pi(f32(column) * 0.000299222f - 0.25f);
+    let ct = unitpack_eac24_sincos_pi(f32(row) * 0.000299222f - 0.25f);
     let d = vec3<f32>(cs.x, ct.x, cs.y) * vec3<f32>(ct.y, cs.y, ct.y);
     let d_sq = d * d;
     let u = d / sqrt(d_sq.x + d_sq.y + d_sq.z);
-    let t26 = face >= 3.5f;
-    let t27 = face >= 1.5f;
-    let t28 = select(select(face, face - 2.0f, t27), face - 4.0f, t26);
-    let t29 = select(u.z, -u.z, select(t28, t28 - 2.0f, t28 >= 1.5f) > 0.5f);
+    let t23 = face >= 3.5f;
+    let t24 = face >= 1.5f;
+    let t25 = select(select(face, face - 2.0f, t24), face - 4.0f, t23);
+    let t26 = select(u.z, -u.z, select(t25, t25 - 2.0f, t25 >= 1.5f) > 0.5f);
     return select(
-        select(vec3<f32>(t29, u.xy), vec3<f32>(u.y, t29, u.x), t27),
-        vec3<f32>(u.xy, t29),
-        t26
+        select(vec3<f32>(t26, u.xy), vec3<f32>(u.y, t26, u.x), t24),
+        vec3<f32>(u.xy, t26),
+        t23
     );
 }
 

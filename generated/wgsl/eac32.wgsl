@@ -83,27 +83,19 @@ fn unitpack_eac32_decode_float(params: vec2<f32>) -> vec3<f32> {
     let t30 = t29 + 1u;
     let row = select(t30, t29, r < t30 * 26754u);
     let column = r - row * 26754u;
-    let row_f = f32(row);
-    let t31 = select(0.0f, row_f, row_f >= 0.0f);
-    let t32 = f32(column >> 12u) * 4096.0f + f32(column & 0xfffu);
-    let t33 = select(0.0f, t32, t32 >= 0.0f);
-    let cs = unitpack_eac32_sincos_pi(
-        select(26753.0f, t33, t33 <= 26753.0f) * 1.8689492e-5f - 0.25f
-    );
-    let ct = unitpack_eac32_sincos_pi(
-        select(26753.0f, t31, t31 <= 26753.0f) * 1.8689492e-5f - 0.25f
-    );
+    let cs = unitpack_eac32_sincos_pi(f32(column) * 1.8689492e-5f - 0.25f);
+    let ct = unitpack_eac32_sincos_pi(f32(row) * 1.8689492e-5f - 0.25f);
     let d = vec3<f32>(cs.x, ct.x, cs.y) * vec3<f32>(ct.y, cs.y, ct.y);
     let d_sq = d * d;
     let u = d / sqrt(d_sq.x + d_sq.y + d_sq.z);
-    let t34 = face >= 3.5f;
-    let t35 = face >= 1.5f;
-    let t36 = select(select(face, face - 2.0f, t35), face - 4.0f, t34);
-    let t37 = select(u.z, -u.z, select(t36, t36 - 2.0f, t36 >= 1.5f) > 0.5f);
+    let t31 = face >= 3.5f;
+    let t32 = face >= 1.5f;
+    let t33 = select(select(face, face - 2.0f, t32), face - 4.0f, t31);
+    let t34 = select(u.z, -u.z, select(t33, t33 - 2.0f, t33 >= 1.5f) > 0.5f);
     return select(
-        select(vec3<f32>(t37, u.xy), vec3<f32>(u.y, t37, u.x), t35),
-        vec3<f32>(u.xy, t37),
-        t34
+        select(vec3<f32>(t34, u.xy), vec3<f32>(u.y, t34, u.x), t32),
+        vec3<f32>(u.xy, t34),
+        t31
     );
 }
 
@@ -152,27 +144,19 @@ fn unitpack_eac32_decode(code: u32) -> vec3<f32> {
     let t30 = t29 + 1u;
     let row = select(t30, t29, r < t30 * 26754u);
     let column = r - row * 26754u;
-    let row_f = f32(row);
-    let t31 = select(0.0f, row_f, row_f >= 0.0f);
-    let t32 = f32(column >> 12u) * 4096.0f + f32(column & 0xfffu);
-    let t33 = select(0.0f, t32, t32 >= 0.0f);
-    let cs = unitpack_eac32_sincos_pi(
-        select(26753.0f, t33, t33 <= 26753.0f) * 1.8689492e-5f - 0.25f
-    );
-    let ct = unitpack_eac32_sincos_pi(
-        select(26753.0f, t31, t31 <= 26753.0f) * 1.8689492e-5f - 0.25f
-    );
+    let cs = unitpack_eac32_sincos_pi(f32(column) * 1.8689492e-5f - 0.25f);
+    let ct = unitpack_eac32_sincos_pi(f32(row) * 1.8689492e-5f - 0.25f);
     let d = vec3<f32>(cs.x, ct.x, cs.y) * vec3<f32>(ct.y, cs.y, ct.y);
     let d_sq = d * d;
     let u = d / sqrt(d_sq.x + d_sq.y + d_sq.z);
-    let t34 = face >= 3.5f;
-    let t35 = face >= 1.5f;
-    let t36 = select(select(face, face - 2.0f, t35), face - 4.0f, t34);
-    let t37 = select(u.z, -u.z, select(t36, t36 - 2.0f, t36 >= 1.5f) > 0.5f);
+    let t31 = face >= 3.5f;
+    let t32 = face >= 1.5f;
+    let t33 = select(select(face, face - 2.0f, t32), face - 4.0f, t31);
+    let t34 = select(u.z, -u.z, select(t33, t33 - 2.0f, t33 >= 1.5f) > 0.5f);
     return select(
-        select(vec3<f32>(t37, u.xy), vec3<f32>(u.y, t37, u.x), t35),
-        vec3<f32>(u.xy, t37),
-        t34
+        select(vec3<f32>(t34, u.xy), vec3<f32>(u.y, t34, u.x), t32),
+        vec3<f32>(u.xy, t34),
+        t31
     );
 }
 

@@ -31,7 +31,7 @@ use crate::codecs::core::info::{Domain, FloatForm, Info, Sizes};
 use crate::codecs::core::pipeline::codec_functions;
 use crate::codecs::core::spec::SpecError;
 use crate::codecs::cube_maps::faces::{Face, placed};
-use crate::codecs::toolkit::exact::{canonical_or_z, float_of};
+use crate::codecs::toolkit::exact::canonical_or_z;
 use crate::codecs::toolkit::fixed_trig;
 use crate::codecs::toolkit::index::Halves;
 use crate::codecs::toolkit::quant::Quants;
@@ -96,11 +96,11 @@ impl Eac {
 
     /// Face, row and column of index `i`, as exact integers in floats. Only integer
     /// operations decide them (comparisons with the faces' first indices, the row bit by
-    /// bit from the top, each bit kept where `i` reaches that row's first index), so every
-    /// implementation computes the same, and an interval evaluation over a range of codes
-    /// keeps them exact and within the face (the decoder's bound proof,
-    /// [`crate::measure::decode_bound`]): a quotient estimated in floats and corrected
-    /// would be as exact, but its estimate would look deviated to that proof.
+    /// bit from the top, each bit kept where `i` reaches that row's first index), so they
+    /// are the same on every implementation by construction, which the decoders' bound,
+    /// proven over face, row and column ([`Codec::proof_parts`]), takes as given. A
+    /// quotient estimated in floats and corrected by comparisons would be as exact and
+    /// cheaper, but exact by an argument about the estimate's error, not by construction.
     #[inline(always)]
     fn split<F: Float>(&self, i: F::U) -> (F, F, F) {
         let n = self.side();
@@ -121,10 +121,8 @@ impl Eac {
         }
         let row = row.named("row");
         let column = r.wrapping_sub(row.wrapping_mul(F::U::c(n))).named("column");
-        // Within the face for every code; clamped all the same, so that over a range of
-        // codes, where the bits' choices are bounded one by one, the angles stay on it.
-        let side = { #[inline(always)] |x: F| x.clamped(F::c(0.0), F::c((n - 1) as f32)) };
-        (face, side(row.to_f()), side(float_of(column)))
+        // Both below N, so below 2^24: converted exactly.
+        (face, row.to_f(), column.to_f())
     }
 
     /// The direction of index `i`: [`Eac::on_face`] of its face, row and column.
