@@ -56,13 +56,12 @@ use crate::codecs::toolkit::fixed_trig::{self, ONE};
 use crate::codecs::functions::decode_boxes::fetched_range;
 use crate::codecs::functions::function::{Emitted, Enclose, Extra, Function, Inputs, Role, WordsMap};
 use crate::codecs::core::pipeline::through_table;
-use crate::codecs::functions::words::generic_function;
+use crate::codecs::functions::words::{Declared, declared, trace_declared};
 use crate::codecs::angular::latlong::grid_direction;
 use crate::codecs::toolkit::quant::Quant;
 use crate::codecs::core::spec::Spec;
 use crate::codecs::angular::spherical::fixed_angles;
 use crate::model::enclosure::Encl;
-use crate::model::trace::{Tf, define, trace_module};
 use crate::model::{Bool, Float, Uint, V2, V3};
 use std::sync::{Arc, OnceLock};
 
@@ -376,32 +375,17 @@ fn emitted(spec_id: &str, bits: u32) -> Emitted {
     type U<F> = <F as Float>::U;
     let r = Rings::of(bits);
     let q = fields(bits);
-    let module = trace_module(|| {
-        define("decode_float", &["params"], |p: V2<Tf>| grid_direction(p));
-        define("encode_ring", &["v"], |v: V3<Tf>| encode_ring(r, v));
-        // `encode` first: encode_float calls it, and the first definition names the
-        // parameters.
-        define("encode", &["v", "ring"], |(v, e): (V3<Tf>, V2<U<Tf>>)| encode(v, e));
-        define("encode_float", &["v", "ring"], |(v, e): (V3<Tf>, V2<U<Tf>>)| {
-            encode_float(bits, v, e)
-        });
-        define("decode_ring", &["code"], |c: U<Tf>| decode_ring::<Tf>(r, c));
-        define(
-            "decode_params",
-            &["code", "g", "ring0", "ring1"],
-            |(c, (g, (e0, e1))): ParamsArgs<Tf>| decode_params::<Tf>(r, c, g, e0, e1),
-        );
-    });
     // decode_float's parameters: any in [0, 1]² (unorm16 fetches as verify inputs; the
     // bound is proven over the whole square).
     let params = [Quant::Unorm(16); 2];
-    let mut dec_float = generic_function!(
+    let mut dec_float = declared!(
         "decode_float",
         Role::DecodeFloat,
         Inputs::FloatCodes(params.to_vec()),
+        ["params"],
         <F> [] |p: V2<F>| grid_direction(p)
     );
-    dec_float.enclose = Some(Enclose {
+    dec_float.function_mut().enclose = Some(Enclose {
         eval: Arc::new(move |b: &[(i64, i64)]| {
             let p = V2::new(fetched_range(params[0], b[0]), fetched_range(params[1], b[1]));
             grid_direction::<Encl>(p).to_array().to_vec()
@@ -412,10 +396,11 @@ fn emitted(spec_id: &str, bits: u32) -> Emitted {
         budget: None,
         parts: None,
     });
-    let ring = generic_function!(
+    let ring = declared!(
         "encode_ring",
         Role::LutTexel,
         Inputs::Vectors,
+        ["v"],
         <F> [] |v: V3<F>| encode_ring(r, v)
     );
     let with_ring = Inputs::VectorsWith(Extra {
@@ -426,22 +411,25 @@ fn emitted(spec_id: &str, bits: u32) -> Emitted {
             r.entry(j).to_vec()
         }),
     });
-    let enc = generic_function!(
+    let enc = declared!(
         "encode",
         Role::Encode,
         with_ring.clone(),
+        ["v", "ring"],
         <F> [] |x: (V3<F>, V2<U<F>>)| encode(x.0, x.1)
     );
-    let enc_float = generic_function!(
+    let enc_float = declared!(
         "encode_float",
         Role::EncodeFloat,
         with_ring,
+        ["v", "ring"],
         <F> [] |x: (V3<F>, V2<U<F>>)| encode_float(bits, x.0, x.1)
     );
-    let guess = generic_function!(
+    let guess = declared!(
         "decode_ring",
         Role::LutTexel,
         Inputs::Codes(q.to_vec()),
+        ["code"],
         <F> [] |c: U<F>| decode_ring::<F>(r, c)
     );
     // A guess's words → the guess and the entries g and g + 1.
@@ -451,7 +439,7 @@ fn emitted(spec_id: &str, bits: u32) -> Emitted {
         out.extend(r.entry(g[0] + 1));
         out
     });
-    let params_fn = generic_function!(
+    let params_fn = declared!(
         "decode_params",
         Role::LutTexel,
         Inputs::CodesWith(
@@ -465,20 +453,25 @@ fn emitted(spec_id: &str, bits: u32) -> Emitted {
                 },
             }
         ),
+        ["code", "g", "ring0", "ring1"],
         <F> [] |x: ParamsArgs<F>| decode_params::<F>(r, x.0, x.1.0, x.1.1.0, x.1.1.1)
     );
     let lookup: WordsMap = Arc::new(move |j: &[u32]| r.entry(j[0]).to_vec());
-    let cpu_enc = |f: &Function, role: Role| {
-        through_table(f.name, role, Inputs::Vectors, &ring, lookup.clone(), f, true)
+    let cpu_enc = |d: &Declared| {
+        let f = d.function();
+        through_table(f.name, f.role, Inputs::Vectors, ring.function(), lookup.clone(), f, true)
     };
     let cpu = vec![
-        cpu_enc(&enc, Role::Encode),
-        cpu_enc(&enc_float, Role::EncodeFloat),
-        cpu_decode(&q, &guess, pair, &params_fn, &dec_float),
+        cpu_enc(&enc),
+        cpu_enc(&enc_float),
+        cpu_decode(&q, guess.function(), pair, params_fn.function(), dec_float.function()),
     ];
+    // `encode` before `encode_float`, which calls it: the first definition names the
+    // parameters.
+    let (module, functions) = trace_declared(vec![dec_float, ring, enc, enc_float, guess, params_fn]);
     Emitted {
         module,
-        functions: vec![dec_float, ring, enc_float, enc, guess, params_fn],
+        functions,
         cpu,
         namespace: spec_id.to_string(),
         portable_encoder: true,

@@ -12,10 +12,9 @@
 use crate::codecs::core::info::{Info, Sizes, FloatForm};
 use crate::codecs::core::spec::{Family, Tracing};
 use crate::codecs::functions::function::{Emitted, Inputs, Role};
-use crate::codecs::functions::words::generic_function;
+use crate::codecs::functions::words::{declared, trace_declared};
 use crate::codecs::toolkit::quant::Quant;
 use crate::codecs::core::spec::Spec;
-use crate::model::trace::{Tf, define, trace_module};
 use crate::model::{Float, V2, V3};
 
 pub static FAMILY: ParaboloidPdFamily = ParaboloidPdFamily;
@@ -46,22 +45,18 @@ impl Family for ParaboloidPdFamily {
         false
     }
     fn emitted(&self, _spec: &Spec, _: Tracing) -> Emitted {
-        let module = trace_module(|| {
-            define(NAME, &["pn", "pd"], |(pn, pd): (V2<Tf>, V2<Tf>)| {
-                combine(pn, pd)
-            });
-        });
         // A primary paraboloid point and a detail's slopes as snorm8 fetches return them.
         let inputs = Inputs::FloatCodes(vec![Quant::Snorm(8); 4]);
-        let f = generic_function!(
+        let (module, functions) = trace_declared(vec![declared!(
             NAME,
             Role::Combine,
             inputs,
+            ["pn", "pd"],
             <F> [] |pd: (V2<F>, V2<F>)| combine(pd.0, pd.1)
-        );
+        )]);
         Emitted {
             module,
-            functions: vec![f],
+            functions,
             namespace: String::new(),
             portable_encoder: false,
             cpu: Vec::new(),

@@ -8,10 +8,9 @@
 use crate::codecs::core::info::{Info, Sizes, FloatForm};
 use crate::codecs::core::spec::{Family, Tracing};
 use crate::codecs::functions::function::{Emitted, Inputs, Role};
-use crate::codecs::functions::words::generic_function;
+use crate::codecs::functions::words::{declared, trace_declared};
 use crate::codecs::toolkit::quant::Quant;
 use crate::codecs::core::spec::Spec;
-use crate::model::trace::{Tf, define, trace_module};
 use crate::model::{Float, Uint, V2, V3};
 
 pub static FAMILY: Pack12Family = Pack12Family;
@@ -34,15 +33,13 @@ static INFO: Info = Info {
 /// adversarial [`Dev`].
 macro_rules! helpers {
     ($(($name:literal, $role:expr, $quants:expr, $param:literal, $P:ident, $f:path)),* $(,)?) => {{
-        let module = trace_module(#[inline(always)] || {
-            $(define($name, &[$param], #[inline(always)] |x: $P<Tf>| $f(x));)*
-        });
-        let functions = vec![$(generic_function!(
+        let (module, functions) = trace_declared(vec![$(declared!(
             $name,
             $role,
             Inputs::FloatCodes($quants),
+            [$param],
             <F> [] |x: $P<F>| $f(x)
-        )),*];
+        )),*]);
         Emitted { module, functions, namespace: String::new(), portable_encoder: false, cpu: Vec::new() }
     }};
 }

@@ -7,7 +7,10 @@ use crate::codecs::functions::decode_boxes::{fetched_range, field_codes};
 use crate::codecs::functions::function::{
     BoxEval, Emitted, Enclose, Eval, Function, Inputs, LanesEval, Role, WordsMap,
 };
-use crate::codecs::functions::words::{Bits, Lanes, Lanes8, chained, generic_function};
+use crate::codecs::functions::words::{
+    Bits, Declared, Lanes, Lanes8, Tracer, chained, declared, generic_function, trace_declared,
+    tracer,
+};
 use crate::model::Float;
 use crate::model::V3;
 use crate::model::avx2_lanes::F8;
@@ -15,11 +18,11 @@ use crate::model::deviant::Dev;
 use crate::model::enclosure::Encl;
 use crate::model::lanes::F4;
 use crate::model::num::helper;
-use crate::model::trace::{Tf, define, trace_module};
 use std::sync::Arc;
 
 /// The four functions of a codec spec (`decode_float`, `decode`, `encode_float`,
-/// `encode`), traced once and evaluated by the same generic code.
+/// `encode`), each declared once ([`declared!`]): traced and evaluated by the same generic
+/// code.
 pub(crate) fn codec_functions<C: Codec + Clone + 'static>(spec: &Spec, c: C) -> Emitted
 where
     C::P<f32>: Bits,
@@ -32,37 +35,38 @@ where
     C::C<F8>: Bits<Lanes8>,
 {
     let precise = spec.precise();
-    let module = trace_module(
-        #[inline(always)]
-        || trace_codec(&c, precise),
-    );
+    // Decoders first, so that encoders calling them find them with their parameter names.
     let mut functions = codec_decoders(&c);
     if precise {
         functions.extend(precise_encoders(&c));
     } else {
         functions.extend([
-            generic_function!(
+            declared!(
                 "encode_float",
                 Role::EncodeFloat,
                 Inputs::Vectors,
+                ["v"],
                 <F> [c] |v: V3<F>| encode_float(&c, false, v)
             ),
-            generic_function!(
+            declared!(
                 "encode",
                 Role::Encode,
                 Inputs::Vectors,
+                ["v"],
                 <F> [c] |v: V3<F>| encode_packed(&c, false, v)
             ),
         ]);
         if let Some(name) = c.alternate() {
-            functions.push(generic_function!(
+            functions.push(declared!(
                 name,
                 Role::Encode,
                 Inputs::Vectors,
+                ["v"],
                 <F> [c] |v: V3<F>| encode_alternate(&c, false, v)
             ));
         }
     }
+    let (module, functions) = trace_declared(functions);
     Emitted {
         module,
         functions,
@@ -79,10 +83,11 @@ where
 /// A precise spec's `encode_float`, `encode` and alternate encoder: the search
 /// ([`Codec::precise_codes`]) chained with the cheap step each makes of its codes
 /// ([`chained`]), which is bit for bit [`encode_float`], [`encode_packed`] and
-/// [`encode_alternate`] with `precise` set. The search, the costliest body of the
-/// catalogue, is then compiled once per spec rather than once per encoder, and `verify`
-/// runs it once for the three.
-fn precise_encoders<C: Codec + Clone + 'static>(c: &C) -> Vec<Function>
+/// [`encode_alternate`] with `precise` set, the bodies they are traced by. The search,
+/// the costliest body of the catalogue, is then compiled once per spec rather than once
+/// per encoder, and `verify` runs it once for the three; the include defines it as
+/// `encode_codes`, which the three call.
+fn precise_encoders<C: Codec + Clone + 'static>(c: &C) -> Vec<Declared>
 where
     C::P<f32>: Bits,
     C::C<f32>: Bits,
@@ -93,14 +98,19 @@ where
     C::P<F8>: Bits<Lanes8>,
     C::C<F8>: Bits<Lanes8>,
 {
-    let search = generic_function!(
+    let (search, traced_search) = declared!(
         "encode_codes",
         Role::Encode,
         Inputs::Vectors,
+        ["v"],
         <F> [c] |v: V3<F>| c.precise_codes(v)
-    );
-    let step = |name, role, then: Function| chained(name, role, Inputs::Vectors, &search, &then);
+    )
+    .unlisted();
+    let step = |name, role, then: Function, trace: Tracer| {
+        Declared::new(chained(name, role, Inputs::Vectors, &search, &then), trace)
+    };
     let mut functions = vec![
+        traced_search,
         step(
             "encode_float",
             Role::EncodeFloat,
@@ -110,6 +120,7 @@ where
                 Inputs::Vectors,
                 <F> [c] |p: C::P<F>| dequantize(&c.quants(), p)
             ),
+            tracer!(["v"], <F> [c] |v: V3<F>| encode_float(&c, true, v)),
         ),
         step(
             "encode",
@@ -120,6 +131,7 @@ where
                 Inputs::Vectors,
                 <F> [c] |p: C::P<F>| pack::<F, C::P<F>, C::C<F>>(&c.quants(), p)
             ),
+            tracer!(["v"], <F> [c] |v: V3<F>| encode_packed(&c, true, v)),
         ),
     ];
     if let Some(name) = c.alternate() {
@@ -132,6 +144,7 @@ where
                 Inputs::Vectors,
                 <F> [c] |p: C::P<F>| pack::<F, C::P<F>, C::C<F>>(&c.quants(), c.alternate_codes(p))
             ),
+            tracer!(["v"], <F> [c] |v: V3<F>| encode_alternate(&c, true, v)),
         ));
     }
     functions
@@ -139,8 +152,8 @@ where
 
 /// A codec's `decode_float` and `decode`, with the enclosures their bounds are proven
 /// by: what a spec whose encoders are its own (a table codec) shares with the codec
-/// whose texels it writes. Traced by [`trace_decoders`].
-pub(crate) fn codec_decoders<C: Codec + Clone + 'static>(c: &C) -> Vec<Function>
+/// whose texels it writes.
+pub(crate) fn codec_decoders<C: Codec + Clone + 'static>(c: &C) -> Vec<Declared>
 where
     C::P<f32>: Bits,
     C::C<f32>: Bits,
@@ -174,16 +187,18 @@ where
     };
     let c = c.clone();
     let mut functions = vec![
-        generic_function!(
+        declared!(
             "decode_float",
             Role::DecodeFloat,
             Inputs::FloatCodes(q.to_vec()),
+            ["params"],
             <F> [c] |p: C::P<F>| c.direction(p)
         ),
-        generic_function!(
+        declared!(
             "decode",
             Role::Decode,
             Inputs::Codes(q.to_vec()),
+            ["code"],
             <F> [c] |code: C::C<F>| decode_packed(&c, code)
         ),
     ];
@@ -202,7 +217,7 @@ where
             c.parts_direction(&p).to_array().to_vec()
         });
         for f in &mut functions {
-            f.enclose = Some(Enclose {
+            f.function_mut().enclose = Some(Enclose {
                 eval: eval.clone(),
                 whole_field: None,
                 unread: &[],
@@ -213,7 +228,7 @@ where
         }
         return functions;
     }
-    functions[0].enclose = Some(Enclose {
+    functions[0].function_mut().enclose = Some(Enclose {
         eval: Arc::new(fetch_box),
         whole_field,
         unread,
@@ -221,7 +236,7 @@ where
         budget: None,
         parts: None,
     });
-    functions[1].enclose = Some(Enclose {
+    functions[1].function_mut().enclose = Some(Enclose {
         eval: Arc::new(field_box),
         whole_field,
         unread,
@@ -370,27 +385,5 @@ pub fn encode_float<F: Float, C: Codec>(c: &C, precise: bool, v: V3<F>) -> C::P<
         dequantize(&c.quants(), helper!("encode_codes" => c.precise_codes(v)))
     } else {
         c.params(v)
-    }
-}
-
-/// Defines [`codec_decoders`]' functions in the module being traced.
-pub fn trace_decoders<C: Codec>(c: &C) {
-    define("decode_float", &["params"], |p: C::P<Tf>| c.direction(p));
-    define("decode", &["code"], |code: C::C<Tf>| decode_packed(c, code));
-}
-
-/// Traces the public functions, decoders first so that encoders calling them find them
-/// with their parameter names. Each is the same generic function the `f32` reference runs.
-fn trace_codec<C: Codec>(c: &C, precise: bool) {
-    trace_decoders(c);
-    if precise {
-        define("encode_codes", &["v"], |v: V3<Tf>| c.precise_codes(v));
-    }
-    define("encode_float", &["v"], |v: V3<Tf>| {
-        encode_float(c, precise, v)
-    });
-    define("encode", &["v"], |v: V3<Tf>| encode_packed(c, precise, v));
-    if let Some(name) = c.alternate() {
-        define(name, &["v"], |v: V3<Tf>| encode_alternate(c, precise, v));
     }
 }

@@ -9,14 +9,17 @@
 use crate::codecs::core::codec::{Params, dequantize, unpack};
 use crate::codecs::core::spec::Spec;
 use crate::codecs::functions::decode_boxes::{fetched_range, field_codes};
-use crate::codecs::functions::function::{Emitted, Enclose, Function, Inputs, Role};
-use crate::codecs::functions::words::{Bits, Lanes, Lanes8, chained, generic_function};
+use crate::codecs::functions::function::{Emitted, Enclose, Inputs, Role};
+use crate::codecs::functions::words::{
+    Bits, Declared, Lanes, Lanes8, Tracer, chained, declared, generic_function, trace_declared,
+    tracer,
+};
 use crate::codecs::toolkit::quant::Quant;
 use crate::model::avx2_lanes::F8;
 use crate::model::deviant::Dev;
 use crate::model::enclosure::Encl;
 use crate::model::lanes::F4;
-use crate::model::trace::{Module, Shape, Tf, Tu, Value, define, define_fields, trace_module};
+use crate::model::trace::{Shape, Tf, Value};
 use crate::model::{Bool, Float, V2, V3, V4};
 use std::sync::Arc;
 
@@ -46,15 +49,18 @@ pub fn tbn<F: Float>((n, t): (V3<F>, V4<F>)) -> (V3<F>, V3<F>, V3<F>) {
 pub const TBN_DECODER: &str = "decode_tbn";
 
 /// A frame spec's `decode_tbn`: its packed `decode` chained with [`tbn`]
-/// ([`chained`]), so that the decoder's body is not compiled again.
-pub fn tbn_function(decode: &Function) -> Function {
+/// ([`chained`]), so that the decoder's body is not compiled again; traced by `trace`,
+/// [`tbn`] of the decoder's traced body.
+pub(crate) fn tbn_function(decode: &Declared, trace: Tracer) -> Declared {
+    let decode = decode.function();
     let step = generic_function!(
         "tbn",
         Role::Decode,
         Inputs::Frames,
         <F> [] |f: (V3<F>, V4<F>)| tbn(f)
     );
-    chained(TBN_DECODER, Role::Decode, decode.inputs.clone(), decode, &step)
+    let chain = chained(TBN_DECODER, Role::Decode, decode.inputs.clone(), decode, &step);
+    Declared::new(chain, trace)
 }
 
 /// A frame format stored as its float form's fields, whose packed decoder is that float
@@ -92,47 +98,44 @@ where
     C::P<F8>: Bits<Lanes8>,
     C::P<Tf>: Value,
 {
-    let module = trace_module(|| {
-        define_fields("decode_float", &[C::PARAM], FRAME, |p: C::P<Tf>| C::frame(p));
-        define_fields("decode", &["code"], FRAME, |c: V2<Tu>| field_decode::<C, Tf>(c));
-        define_fields(TBN_DECODER, &["code"], TBN, |c: V2<Tu>| {
-            tbn(field_decode::<C, Tf>(c))
-        });
-        define("encode_float", &["n", "t"], |(n, t): (V3<Tf>, V4<Tf>)| {
-            C::encode_float(n, t)
-        });
-        define("encode", &["n", "t"], |(n, t): (V3<Tf>, V4<Tf>)| C::encode(n, t));
-    });
-    let mut functions = vec![
-        generic_function!(
+    let decode = declared!(
+        "decode",
+        Role::Decode,
+        Inputs::Codes(C::QUANTS.to_vec()),
+        ["code"] => FRAME,
+        <F> [] |c: V2<<F as Float>::U>| field_decode::<C, F>(c)
+    );
+    let decode_tbn = tbn_function(
+        &decode,
+        tracer!(["code"] => TBN, <F> [] |c: V2<<F as Float>::U>| tbn(field_decode::<C, F>(c))),
+    );
+    let functions = vec![
+        declared!(
             "decode_float",
             Role::DecodeFloat,
             Inputs::FloatCodes(C::QUANTS.to_vec()),
+            [C::PARAM] => FRAME,
             <F> [] |p: C::P<F>| C::frame(p)
         ),
-        generic_function!(
-            "decode",
-            Role::Decode,
-            Inputs::Codes(C::QUANTS.to_vec()),
-            <F> [] |c: V2<<F as Float>::U>| field_decode::<C, F>(c)
-        ),
-        generic_function!(
+        decode,
+        decode_tbn,
+        declared!(
             "encode_float",
             Role::EncodeFloat,
             Inputs::Frames,
+            ["n", "t"],
             <F> [] |f: (V3<F>, V4<F>)| C::encode_float(f.0, f.1)
         ),
-        generic_function!(
+        declared!(
             "encode",
             Role::Encode,
             Inputs::Frames,
+            ["n", "t"],
             <F> [] |f: (V3<F>, V4<F>)| C::encode(f.0, f.1)
         ),
     ];
-    functions.push(tbn_function(&functions[1]));
     emitted(
         spec,
-        module,
         functions,
         C::QUANTS,
         Some(|p: C::P<Encl>| C::frame(p)),
@@ -245,16 +248,15 @@ const FRAME_BUDGET: usize = 100_000;
 /// A decoded frame's enclosure: `n` and `t`.
 type EnclosedFrame = (V3<Encl>, V4<Encl>);
 
-/// A frame spec's [`Emitted`]: its traced `module` and `functions`, whose decoders get
+/// A frame spec's [`Emitted`]: its `declared` functions, traced in order, whose decoders get
 /// enclosures for their proven bounds ([`crate::measure::decode_bound`]) over boxes of the
 /// `quants` fields: `decode_float` (where the spec has one) through `fetched` on the
 /// fetched values, `decode` and `decode_tbn` (nine outputs, [`tbn`]) through `codes` on
 /// the integer codes. `portable`: whether the
 /// packed encoder is decided exactly (the engines' arithmetic is not).
-pub fn emitted<P: Params<Encl> + 'static>(
+pub(crate) fn emitted<P: Params<Encl> + 'static>(
     spec: &Spec,
-    module: Module,
-    mut functions: Vec<Function>,
+    declared: Vec<Declared>,
     quants: &'static [Quant],
     fetched: Option<fn(P) -> EnclosedFrame>,
     codes: impl Fn(P) -> EnclosedFrame + Send + Sync + 'static,
@@ -280,6 +282,7 @@ pub fn emitted<P: Params<Encl> + 'static>(
             parts: None,
         })
     };
+    let (module, mut functions) = trace_declared(declared);
     let codes = Arc::new(codes);
     for f in &mut functions {
         match f.role {

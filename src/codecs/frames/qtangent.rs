@@ -26,7 +26,7 @@ use crate::model::enclosure::Encl;
 use crate::codecs::core::info::{Info, Sizes, FloatForm};
 use crate::codecs::core::spec::{Family, Spec, Tracing};
 use crate::codecs::core::codec::pack;
-use crate::codecs::functions::words::generic_function;
+use crate::codecs::functions::words::{declared, tracer};
 use crate::codecs::frames::frame::{
     FieldFrame, FRAME, TBN, TBN_DECODER, canonical_tangent, cross, dot, field_frame_emitted, handedness, policy_normal, rotation_columns,
     tbn, tbn_doc, tbn_function, usable,
@@ -34,7 +34,6 @@ use crate::codecs::frames::frame::{
 use crate::codecs::frames::smallest_three;
 use crate::codecs::toolkit::quant::{Quant, round_half_away};
 use crate::model::num::helper;
-use crate::model::trace::{Tf, Tu, define, define_fields, trace_module};
 use crate::model::{Bool, Float, V2, V3, V4};
 
 /// The stored fields: the quaternion's x, y, z and w as snorm16, in that order.
@@ -271,29 +270,30 @@ fn doc32(name: &str) -> Vec<String> {
 /// qtangent32's functions: `decode`, `decode_tbn` and `encode`, on one-word codes.
 fn emitted32(spec: &Spec) -> Emitted {
     use smallest_three::{QUANTS, decode, decode_fields, encode};
-    let module = trace_module(|| {
-        define_fields("decode", &["code"], FRAME, |c: Tu| decode::<Tf, Tu>(c));
-        define_fields(TBN_DECODER, &["code"], TBN, |c: Tu| tbn(decode::<Tf, Tu>(c)));
-        define("encode", &["n", "t"], |(n, t): (V3<Tf>, V4<Tf>)| -> Tu { encode(n, t) });
-    });
-    let mut functions = vec![
-        generic_function!(
-            "decode",
-            Role::Decode,
-            Inputs::Codes(QUANTS.to_vec()),
-            <F> [] |c: <F as Float>::U| decode::<F, <F as Float>::U>(c)
-        ),
-        generic_function!(
+    let packed_decode = declared!(
+        "decode",
+        Role::Decode,
+        Inputs::Codes(QUANTS.to_vec()),
+        ["code"] => FRAME,
+        <F> [] |c: <F as Float>::U| decode::<F, <F as Float>::U>(c)
+    );
+    let decode_tbn = tbn_function(
+        &packed_decode,
+        tracer!(["code"] => TBN, <F> [] |c: <F as Float>::U| tbn(decode::<F, <F as Float>::U>(c))),
+    );
+    let functions = vec![
+        packed_decode,
+        decode_tbn,
+        declared!(
             "encode",
             Role::Encode,
             Inputs::Frames,
+            ["n", "t"],
             <F> [] |f: (V3<F>, V4<F>)| encode::<F, <F as Float>::U>(f.0, f.1)
         ),
     ];
-    functions.insert(1, tbn_function(&functions[0]));
     crate::codecs::frames::frame::emitted(
         spec,
-        module,
         functions,
         &QUANTS,
         None,

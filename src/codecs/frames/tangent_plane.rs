@@ -21,7 +21,7 @@ use crate::codecs::core::codec::{pack, sign_not_zero, unpack};
 use crate::codecs::functions::function::{Emitted, Inputs, Role};
 use crate::codecs::core::info::Info;
 use crate::codecs::core::spec::{Family, Spec, Tracing};
-use crate::codecs::functions::words::{chained, generic_function};
+use crate::codecs::functions::words::{Declared, chained, generic_function, tracer};
 use crate::codecs::frames::frame::{FRAME, TBN, cross, handedness, tbn, TBN_DECODER, tbn_doc, tbn_function};
 use crate::codecs::octahedral::oct::oct_codes;
 use crate::codecs::toolkit::exact::{canonical, snorm_ratio_within, unit_on_grid};
@@ -30,7 +30,6 @@ use crate::codecs::toolkit::quant::{Code, Quant};
 use crate::codecs::toolkit::trig::sincos_pi;
 use crate::model::enclosure::Encl;
 use crate::model::num::helper;
-use crate::model::trace::{Tf, Tu, define, define_fields, trace_module};
 use crate::model::{Bool, Float, V2, V3, V4};
 
 /// The fixed-point unit of the tangent's components and coordinates: `2^-21` of the
@@ -366,14 +365,7 @@ fn emitted(turn: Turn, spec: &Spec) -> Emitted {
         <F> [turn, q] |c: V4<F>| decode_fields(turn, &q, c)
     );
     macro_rules! functions {
-        ($code:ty, $traced:ty) => {{
-            let module = trace_module(|| {
-                define_fields("decode", &["code"], FRAME, |c: $traced| decode::<Tf, $traced>(turn, q, c));
-                define_fields(TBN_DECODER, &["code"], TBN, |c: $traced| tbn(decode::<Tf, $traced>(turn, q, c)));
-                define("encode", &["n", "t"], |(n, t): (V3<Tf>, V4<Tf>)| -> $traced {
-                    encode(turn, q, n, t)
-                });
-            });
+        ($code:ty) => {{
             let unpacked = generic_function!(
                 "unpack",
                 Role::Decode,
@@ -386,20 +378,31 @@ fn emitted(turn: Turn, spec: &Spec) -> Emitted {
                 Inputs::Frames,
                 <F> [q] |c: V4<F>| pack::<F, V4<F>, $code>(&q, c)
             );
-            let decode = chained("decode", Role::Decode, Inputs::Codes(q.to_vec()), &unpacked, &frame);
-            let tbn = tbn_function(&decode);
-            let encode = chained("encode", Role::Encode, Inputs::Frames, &fields, &packed);
-            (module, vec![decode, tbn, encode])
+            let packed_decode = Declared::new(
+                chained("decode", Role::Decode, Inputs::Codes(q.to_vec()), &unpacked, &frame),
+                tracer!(["code"] => FRAME, <F> [turn, q] |c: $code| decode::<F, $code>(turn, &q, c)),
+            );
+            let decode_tbn = tbn_function(
+                &packed_decode,
+                tracer!(["code"] => TBN, <F> [turn, q] |c: $code| tbn(decode::<F, $code>(turn, &q, c))),
+            );
+            let packed_encode = Declared::new(
+                chained("encode", Role::Encode, Inputs::Frames, &fields, &packed),
+                tracer!(["n", "t"], <F> [turn, q] |f: (V3<F>, V4<F>)| {
+                    let code: $code = encode(turn, &q, f.0, f.1);
+                    code
+                }),
+            );
+            vec![packed_decode, decode_tbn, packed_encode]
         }};
     }
-    let (module, functions) = if spec.bits() == 32 {
-        functions!(<F as Float>::U, Tu)
+    let functions = if spec.bits() == 32 {
+        functions!(<F as Float>::U)
     } else {
-        functions!(V2<<F as Float>::U>, V2<Tu>)
+        functions!(V2<<F as Float>::U>)
     };
     crate::codecs::frames::frame::emitted(
         spec,
-        module,
         functions,
         q,
         None,

@@ -7,6 +7,7 @@ use crate::codecs::functions::function::{Function, Inputs, Role, Stages};
 use crate::model::avx2_lanes::{self, F8, WIDTH};
 use crate::model::deviant::{Dev, DevU};
 use crate::model::lanes::{F4, LaneIo, U4};
+use crate::model::trace::{Module, trace_module};
 use crate::model::{V2, V3, V4};
 use std::sync::Arc;
 
@@ -518,3 +519,106 @@ macro_rules! generic_function {
     };
 }
 pub(crate) use generic_function;
+
+/// How a [`Declared`] function defines itself in the module being traced, under the
+/// name given: [`crate::model::trace::define`] (or `define_fields`) of the same generic
+/// body with `F` = [`crate::model::trace::Tf`].
+pub(crate) type Tracer = Box<dyn Fn(&'static str)>;
+
+/// One emitted function, declared once: its evaluations ([`Function`]) and its tracing
+/// ([`Tracer`]) come from the same entry ([`declared!`]), so that the include and the
+/// model cannot name, order or type a function differently.
+pub(crate) struct Declared {
+    name: &'static str,
+    /// `None` for a function defined in the include but verified only through those that
+    /// chain it ([`Declared::unlisted`]).
+    function: Option<Function>,
+    trace: Tracer,
+}
+
+impl Declared {
+    /// `function`, traced by `trace` under its name: for a function whose evaluation is
+    /// composed ([`chained`]) while its traced body calls the steps as the include does.
+    pub(crate) fn new(function: Function, trace: Tracer) -> Declared {
+        Declared {
+            name: function.name,
+            function: Some(function),
+            trace,
+        }
+    }
+
+    /// The function's evaluations, to chain them (through a table).
+    pub(crate) fn function(&self) -> &Function {
+        self.function
+            .as_ref()
+            .expect("a listed function (not `unlisted`)")
+    }
+
+    /// The function, to set what only it has (a decoder's enclosure).
+    pub(crate) fn function_mut(&mut self) -> &mut Function {
+        self.function
+            .as_mut()
+            .expect("a listed function (not `unlisted`)")
+    }
+
+    /// Splits off the evaluations of a function that the include defines but `verify`
+    /// checks only through the functions chained from it (a precise spec's search): the
+    /// [`Function`] to chain, and the declaration that still traces it.
+    pub(crate) fn unlisted(self) -> (Function, Declared) {
+        let function = self.function.expect("declared with its evaluations");
+        let traced = Declared {
+            name: self.name,
+            function: None,
+            trace: self.trace,
+        };
+        (function, traced)
+    }
+}
+
+/// The module of `declared`, each traced in order (decoders first, so that an encoder
+/// calling one finds it with its parameter names), and their functions as `verify`
+/// lists them.
+pub(crate) fn trace_declared(declared: Vec<Declared>) -> (Module, Vec<Function>) {
+    let module = trace_module(|| {
+        for d in &declared {
+            (d.trace)(d.name);
+        }
+    });
+    let functions = declared.into_iter().filter_map(|d| d.function).collect();
+    (module, functions)
+}
+
+/// `tracer!(param_names, <F> [captures] |x: Type<F>| body)`: the [`Tracer`] of a
+/// [`generic_function!`] body, which defines it with `F` = [`crate::model::trace::Tf`]
+/// and the parameter names of the array `param_names`; `tracer!(names => SHAPE, …)`
+/// defines a function returning the struct `SHAPE`.
+macro_rules! tracer {
+    ($params:expr $(=> $shape:expr)?, <$F:ident> [$($c:ident),*] |$x:ident: $A:ty| $body:expr) => {{
+        $(let $c = $c.clone();)*
+        Box::new(move |name: &'static str| {
+            $(let $c = $c.clone();)*
+            type $F = $crate::model::trace::Tf;
+            $crate::codecs::functions::words::tracer!(@define name, $params $(=> $shape)?, move |$x: $A| $body)
+        }) as $crate::codecs::functions::words::Tracer
+    }};
+    (@define $name:ident, $params:expr, $f:expr) => {
+        $crate::model::trace::define($name, &$params, $f)
+    };
+    (@define $name:ident, $params:expr => $shape:expr, $f:expr) => {
+        $crate::model::trace::define_fields($name, &$params, $shape, $f)
+    };
+}
+pub(crate) use tracer;
+
+/// `declared!(name, role, inputs, param_names (=> SHAPE)?, <F> [captures] |x: Type<F>|
+/// body)`: one emitted function from one generic body, its evaluations
+/// ([`generic_function!`]) and its tracing ([`tracer!`]) alike.
+macro_rules! declared {
+    ($name:expr, $role:expr, $inputs:expr, $params:expr $(=> $shape:expr)?, <$F:ident> [$($c:ident),*] |$x:ident: $A:ty| $body:expr) => {
+        $crate::codecs::functions::words::Declared::new(
+            $crate::codecs::functions::words::generic_function!($name, $role, $inputs, <$F> [$($c),*] |$x: $A| $body),
+            $crate::codecs::functions::words::tracer!($params $(=> $shape)?, <$F> [$($c),*] |$x: $A| $body),
+        )
+    };
+}
+pub(crate) use declared;

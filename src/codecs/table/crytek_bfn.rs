@@ -47,12 +47,11 @@ use crate::codecs::toolkit::exact::{canonical_or_z, fixed_length2, fixed_ratio, 
 use crate::codecs::core::info::{Info, Sizes, FloatForm};
 use crate::codecs::core::spec::{Family, Table, TableFormat, Tracing};
 use crate::codecs::functions::function::{Emitted, Extra, Inputs, Role, WordsMap};
-use crate::codecs::core::pipeline::{codec_decoders, through_table, trace_decoders};
-use crate::codecs::functions::words::generic_function;
+use crate::codecs::core::pipeline::{codec_decoders, through_table};
+use crate::codecs::functions::words::{declared, trace_declared};
 use crate::codecs::toolkit::quant::Quant;
 use crate::codecs::core::spec::Spec;
 use crate::codecs::component::unorm3::Unorm3;
-use crate::model::trace::{Tf, define, trace_module};
 use crate::model::{Float, Uint, V2, V3};
 use std::sync::{Arc, OnceLock};
 
@@ -241,18 +240,11 @@ pub fn encode_float<F: Float>(v: V3<F>, fetched: F) -> V3<F> {
 
 /// The emitted functions, and the CPU encoders that fetch from the table in memory.
 fn emitted(spec_id: &str) -> Emitted {
-    let module = trace_module(|| {
-        trace_decoders(&Unorm3);
-        define("fitting_texel", &["v"], |v: V3<Tf>| fitting_texel(v));
-        define("encode_float", &["v", "fetched"], |(v, a): (V3<Tf>, Tf)| {
-            encode_float(v, a)
-        });
-        define("encode", &["v", "fetched"], |(v, a): (V3<Tf>, Tf)| encode(v, a));
-    });
-    let texel = generic_function!(
+    let texel = declared!(
         "fitting_texel",
         Role::LutTexel,
         Inputs::Vectors,
+        ["v"],
         <F> [] |v: V3<F>| fitting_texel(v)
     );
     let with_scale = Inputs::VectorsWith(Extra {
@@ -265,26 +257,31 @@ fn emitted(spec_id: &str) -> Emitted {
             vec![fetch(&[t.x, t.y]).to_bits()]
         }),
     });
-    let enc = generic_function!(
+    let enc = declared!(
         "encode",
         Role::Encode,
         with_scale.clone(),
+        ["v", "fetched"],
         <F> [] |x: (V3<F>, F)| encode(x.0, x.1)
     );
-    let enc_float = generic_function!(
+    let enc_float = declared!(
         "encode_float",
         Role::EncodeFloat,
         with_scale,
+        ["v", "fetched"],
         <F> [] |x: (V3<F>, F)| encode_float(x.0, x.1)
     );
     let lookup: WordsMap = Arc::new(|t: &[u32]| vec![fetch(t).to_bits()]);
-    let cpu = [(&enc, Role::Encode), (&enc_float, Role::EncodeFloat)]
-        .map(|(f, role)| {
-            through_table(f.name, role, Inputs::Vectors, &texel, lookup.clone(), f, true)
+    let cpu = [&enc, &enc_float]
+        .map(|d| {
+            let f = d.function();
+            let (first, then) = (texel.function(), f);
+            through_table(f.name, f.role, Inputs::Vectors, first, lookup.clone(), then, true)
         })
         .to_vec();
     let mut functions = codec_decoders(&Unorm3);
     functions.extend([texel, enc_float, enc]);
+    let (module, functions) = trace_declared(functions);
     Emitted {
         module,
         functions,

@@ -71,12 +71,11 @@ use crate::codecs::core::spec::{Family, Table, TableFormat, Tracing};
 use crate::codecs::functions::decode_boxes::fetched_range;
 use crate::codecs::functions::function::{Emitted, Enclose, Extra, Function, Inputs, Role, WordsMap};
 use crate::codecs::core::pipeline::through_table;
-use crate::codecs::functions::words::generic_function;
+use crate::codecs::functions::words::{Declared, declared, trace_declared};
 use crate::codecs::toolkit::lattice::{Closeness, Measure};
 use crate::codecs::toolkit::quant::Quant;
 use crate::codecs::core::spec::Spec;
 use crate::model::enclosure::Encl;
-use crate::model::trace::{Tf, define, trace_module};
 use crate::model::{Float, Lane, Uint, V2, V3};
 use std::sync::{Arc, OnceLock};
 
@@ -437,58 +436,36 @@ fn emitted(spec_id: &str, lut: SphericalLut, precise: bool) -> Emitted {
     // The fast code's function: the packed encoder of a fast spec, the search's first
     // step in a precise one.
     let fast_name = if precise { "encode_fast" } else { "encode" };
-    let module = trace_module(|| {
-        define("decode_float", &["rgb"], |rgb: V3<Tf>| decode_float(rgb));
-        define("sincos_texel", &["code"], |c: <Tf as Float>::U| {
-            sincos_texel::<Tf>(c)
-        });
-        define("atan_texel", &["v"], |v: V3<Tf>| atan_texel(v));
-        if !precise {
-            define("encode_float", &["v", "fetched"], |(v, a): (V3<Tf>, Tf)| {
-                encode_float(v, a)
-            });
-        }
-        define(fast_name, &["v", "fetched"], |(v, a): (V3<Tf>, Tf)| encode(v, a));
-        if precise {
-            type U = <Tf as Float>::U;
-            define("precise_texel", &["code", "k"], |(c, k): (U, U)| {
-                precise_texel::<Tf>(c, k)
-            });
-            let names = ["v", "code", "s0", "s1", "s2", "s3", "s4", "s5", "s6", "s7", "s8"];
-            define("encode", &names, |(v, (c, s)): (V3<Tf>, (U, Block<Tf>))| {
-                encode_precise(v, c, s)
-            });
-            define("encode_float", &names, |(v, (c, s)): (V3<Tf>, (U, Block<Tf>))| {
-                encode_float_precise(v, c, s)
-            });
-        }
-    });
-    let texel = generic_function!(
+    let texel = declared!(
         "atan_texel",
         Role::LutTexel,
         Inputs::Vectors,
+        ["v"],
         <F> [] |v: V3<F>| atan_texel(v)
     );
     let with_atan = Inputs::VectorsWith(fetch_atan(lut));
-    let enc = generic_function!(
+    let enc = declared!(
         fast_name,
         Role::Encode,
         with_atan.clone(),
+        ["v", "fetched"],
         <F> [] |va: (V3<F>, F)| encode(va.0, va.1)
     );
-    let sincos = generic_function!(
+    let sincos = declared!(
         "sincos_texel",
         Role::LutTexel,
         Inputs::Codes(FIELDS.to_vec()),
+        ["code"],
         <F> [] |c: <F as Float>::U| sincos_texel::<F>(c)
     );
-    let mut dec_float = generic_function!(
+    let mut dec_float = declared!(
         "decode_float",
         Role::DecodeFloat,
         Inputs::FloatCodes(vec![BYTE; 3]),
+        ["rgb"],
         <F> [] |rgb: V3<F>| decode_float(rgb)
     );
-    dec_float.enclose = Some(Enclose {
+    dec_float.function_mut().enclose = Some(Enclose {
         eval: Arc::new(|r: &[(i64, i64)]| {
             let rgb = V3::from_array(std::array::from_fn(|i| fetched_range(BYTE, r[i])));
             decode_float::<Encl>(rgb).to_array().to_vec()
@@ -504,44 +481,46 @@ fn emitted(spec_id: &str, lut: SphericalLut, precise: bool) -> Emitted {
         "encode",
         Role::Encode,
         Inputs::Vectors,
-        &texel,
+        texel.function(),
         atan_lookup.clone(),
-        &enc,
+        enc.function(),
         true,
     );
     let dec_cpu = through_table(
         "decode",
         Role::Decode,
         Inputs::Codes(FIELDS.to_vec()),
-        &sincos,
+        sincos.function(),
         Arc::new(move |t: &[u32]| sincos_fetch(lut, t)),
-        &dec_float,
+        dec_float.function(),
         false,
     );
     let mut functions = vec![dec_float, sincos];
     let cpu = if precise {
         let p = precise_functions(lut, &fast_cpu);
-        functions.extend([texel, enc, p.texel, p.encode_float, p.encode]);
+        functions.extend([texel, enc, p.texel, p.encode, p.encode_float]);
         vec![p.cpu_encode, p.cpu_encode_float, dec_cpu]
     } else {
-        let enc_float = generic_function!(
+        let enc_float = declared!(
             "encode_float",
             Role::EncodeFloat,
             with_atan,
+            ["v", "fetched"],
             <F> [] |va: (V3<F>, F)| encode_float(va.0, va.1)
         );
         let enc_float_cpu = through_table(
             "encode_float",
             Role::EncodeFloat,
             Inputs::Vectors,
-            &texel,
+            texel.function(),
             atan_lookup,
-            &enc_float,
+            enc_float.function(),
             true,
         );
         functions.extend([texel, enc_float, enc]);
         vec![fast_cpu, enc_float_cpu, dec_cpu]
     };
+    let (module, functions) = trace_declared(functions);
     Emitted {
         module,
         functions,
@@ -553,9 +532,9 @@ fn emitted(spec_id: &str, lut: SphericalLut, precise: bool) -> Emitted {
 
 /// A precise spec's own functions.
 struct Precise {
-    texel: Function,
-    encode: Function,
-    encode_float: Function,
+    texel: Declared,
+    encode: Declared,
+    encode_float: Declared,
     /// The CPU encoders: the fast one, the block's fetches from the table in memory, then
     /// `encode` or `encode_float`.
     cpu_encode: Function,
@@ -566,11 +545,12 @@ struct Precise {
 /// chained on the fast one (`fast_cpu`).
 fn precise_functions(lut: SphericalLut, fast_cpu: &Function) -> Precise {
     type U<F> = <F as Float>::U;
-    let search_texel = generic_function!(
+    let search_texel = declared!(
         "precise_texel",
         Role::LutTexel,
         // Every code with each k, and k past the block (read as 8).
         Inputs::CodesAndIndex(FIELDS.to_vec(), 2 * BLOCK),
+        ["code", "k"],
         <F> [] |x: (U<F>, U<F>)| precise_texel::<F>(x.0, x.1)
     );
     let block = block_fetch(lut);
@@ -587,16 +567,19 @@ fn precise_functions(lut: SphericalLut, fast_cpu: &Function) -> Precise {
             })
         },
     });
-    let search = generic_function!(
+    let names = ["v", "code", "s0", "s1", "s2", "s3", "s4", "s5", "s6", "s7", "s8"];
+    let search = declared!(
         "encode",
         Role::Encode,
         inputs.clone(),
+        names,
         <F> [] |x: (V3<F>, (U<F>, Block<F>))| encode_precise(x.0, x.1.0, x.1.1)
     );
-    let search_float = generic_function!(
+    let search_float = declared!(
         "encode_float",
         Role::EncodeFloat,
         inputs,
+        names,
         <F> [] |x: (V3<F>, (U<F>, Block<F>))| encode_float_precise(x.0, x.1.0, x.1.1)
     );
     // What a shader runs: the fast code's two parts, the block's nine texels, the search.
@@ -606,8 +589,8 @@ fn precise_functions(lut: SphericalLut, fast_cpu: &Function) -> Precise {
         cpu
     };
     Precise {
-        cpu_encode: chained("encode", Role::Encode, &search),
-        cpu_encode_float: chained("encode_float", Role::EncodeFloat, &search_float),
+        cpu_encode: chained("encode", Role::Encode, search.function()),
+        cpu_encode_float: chained("encode_float", Role::EncodeFloat, search_float.function()),
         texel: search_texel,
         encode: search,
         encode_float: search_float,
