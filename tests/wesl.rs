@@ -1,8 +1,8 @@
 //! The WESL modules `generate` writes (`generated/wesl/<id>.wesl`, the module
 //! `unitpack::<id>` of a package): each is its spec's WGSL include with the functions
 //! named by their own names, every one links with the `wesl` crate into WGSL that naga
-//! validates, and a package importing two of them runs on lavapipe bit for bit as the
-//! model computes.
+//! validates, every one links with npm's JavaScript `wesl` linker as well, and a package
+//! importing two of them runs on lavapipe bit for bit as the model computes.
 
 use unitpack::codecs::Spec;
 use unitpack::emit::lang::{KernelFn, Returns};
@@ -177,6 +177,72 @@ fn every_module_links_and_validates() {
             .compile(Api::WebGpu, &linked)
             .unwrap_or_else(|e| panic!("{spec}: Tint: {e:#}\n{linked}"));
     }
+}
+
+/// npm's `wesl` linker (`tools/wesl-js`, pinned by its lockfile) on `files`, through
+/// `tools/wesl-js/link.mjs`: each file and its error, if it did not link.
+fn javascript_links(files: &[std::path::PathBuf]) -> Vec<(String, Option<String>)> {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tools/wesl-js");
+    assert!(
+        dir.join("node_modules/wesl/package.json").exists(),
+        "npm's wesl linker is not installed: run `npm ci --prefix tools/wesl-js` \
+         (Node.js and npm: the Debian packages `nodejs` and `npm`)"
+    );
+    let out = std::process::Command::new("node")
+        .arg(dir.join("link.mjs"))
+        .args(files)
+        .output()
+        .unwrap_or_else(|e| panic!("running `node` (the Debian package `nodejs`): {e}"));
+    assert!(
+        out.status.success(),
+        "link.mjs failed:\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8(out.stdout)
+        .expect("UTF-8")
+        .lines()
+        .map(|line| {
+            let v: serde_json::Value = serde_json::from_str(line).expect("a JSON line");
+            let file = v["file"].as_str().expect("file").to_string();
+            (file, v["error"].as_str().map(str::to_string))
+        })
+        .collect()
+}
+
+/// Every generated module links with the JavaScript WESL linker a web application
+/// uses, whose template-list discovery is not WGSL's (`less_than_as_greater` in
+/// `src/emit/lang`); the module written before that rule fails there.
+#[test]
+fn every_module_links_with_the_javascript_linker() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut files: Vec<_> = std::fs::read_dir(root.join("generated/wesl"))
+        .expect("generated/wesl")
+        .map(|e| e.expect("an entry").path())
+        .filter(|p| p.extension().is_some_and(|x| x == "wesl"))
+        .collect();
+    files.sort();
+    assert!(files.len() >= Spec::all().len(), "{} modules", files.len());
+    let results = javascript_links(&files);
+    assert_eq!(results.len(), files.len(), "one result per module");
+    let failed: Vec<String> = results
+        .iter()
+        .filter_map(|(f, e)| e.as_ref().map(|e| format!("{f}: {e}")))
+        .collect();
+    assert!(
+        failed.is_empty(),
+        "{} of {} modules do not link with npm's wesl:\n{}",
+        failed.len(),
+        files.len(),
+        failed.join("\n")
+    );
+    // `t5 < vec2<f32>(0.0f)` in a select followed by a `>=`: read as a template there.
+    let old = root.join("tests/data/cry3_16_before_the_js_linker_fix.wesl");
+    let results = javascript_links(&[old]);
+    let error = results[0]
+        .1
+        .as_deref()
+        .expect("the old module fails to link");
+    assert!(error.contains("template"), "{error}");
 }
 
 /// A package importing two modules (oct16, and float16x3 with its two-word codes and

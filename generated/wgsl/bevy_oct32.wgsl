@@ -67,7 +67,7 @@ fn unitpack_bevy_oct32_encode_float(v: vec3<f32>) -> vec2<f32> {
     return select(
         vec2<f32>(0.0f),
         t1,
-        (bitcast<vec2<u32>>(t1) & vec2<u32>(0x7fffffffu)) < vec2<u32>(0x7f800001u)
+        vec2<u32>(0x7f800001u) > (bitcast<vec2<u32>>(t1) & vec2<u32>(0x7fffffffu))
     );
 }
 
@@ -90,6 +90,6 @@ fn unitpack_bevy_oct32_encode(v: vec3<f32>) -> u32 {
     let floor_abs_t2 = floor(abs_t2);
     let t3 = floor_abs_t2
         + select(vec2<f32>(0.0f), vec2<f32>(1.0f), abs_t2 - floor_abs_t2 >= vec2<f32>(0.5f));
-    let codes = select(t3, -t3, t2 < vec2<f32>(0.0f));
+    let codes = select(t3, -t3, vec2<f32>(0.0f) > t2);
     return (u32(codes.x + 65536.0f) & 0xffffu) | (u32(codes.y + 65536.0f) << 16u);
 }

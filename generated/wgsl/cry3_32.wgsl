@@ -53,7 +53,7 @@ fn unitpack_cry3_32_decode(code: u32) -> vec3<f32> {
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 fn unitpack_cry3_32_encode_float(v: vec3<f32>) -> vec2<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -61,9 +61,9 @@ fn unitpack_cry3_32_encode_float(v: vec3<f32>) -> vec2<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let fixed_f = floor(abs(w2.x) * 2097152.0f);
     let fixed2 = u32(fixed_f);
@@ -137,7 +137,7 @@ fn unitpack_cry3_32_encode_float(v: vec3<f32>) -> vec2<f32> {
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 fn unitpack_cry3_32_round_codes(v: vec3<f32>) -> vec2<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -145,9 +145,9 @@ fn unitpack_cry3_32_round_codes(v: vec3<f32>) -> vec2<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let fixed_f = floor(abs(w2.x) * 2097152.0f);
     let fixed2 = u32(fixed_f);
@@ -220,7 +220,7 @@ fn unitpack_cry3_32_round_codes(v: vec3<f32>) -> vec2<f32> {
         select(
             vec2<f32>(0.0f),
             select(vec2<f32>(0.0f), vec2<f32>(1.0f), t6 <= t7),
-            t5 < vec2<f32>(0.0f)
+            vec2<f32>(0.0f) > t5
         ),
         select(
             vec2<f32>(1.0f),
@@ -235,7 +235,7 @@ fn unitpack_cry3_32_round_codes(v: vec3<f32>) -> vec2<f32> {
         select(
             vec2<f32>(0.0f),
             select(vec2<f32>(0.0f), vec2<f32>(1.0f), t6 <= t10),
-            t9 < vec2<f32>(0.0f)
+            vec2<f32>(0.0f) > t9
         ),
         select(
             vec2<f32>(1.0f),
@@ -245,7 +245,7 @@ fn unitpack_cry3_32_round_codes(v: vec3<f32>) -> vec2<f32> {
         w2.xy >= vec2<f32>(0.0f)
     );
     let t12 = t4
-        + select(vec2<f32>(0.0f), t8, t4 < vec2<f32>(65535.0f))
+        + select(vec2<f32>(0.0f), t8, vec2<f32>(65535.0f) > t4)
         + select(vec2<f32>(0.0f), t11 - 1.0f, t4 > vec2<f32>(0.0f));
     return select(
         vec2<f32>(32768.0f),

@@ -52,7 +52,7 @@ fn unitpack_crytek_bfn24_decode(code: u32) -> vec3<f32> {
 //   and decided exactly (the same texel on every implementation). Sample at (t + ½)/512 for the
 //   same texel through a nearest sampler.
 fn unitpack_crytek_bfn24_fitting_texel(v: vec3<f32>) -> vec2<u32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -60,9 +60,9 @@ fn unitpack_crytek_bfn24_fitting_texel(v: vec3<f32>) -> vec2<u32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let abs_w2 = abs(w2);
     let t1 = select(abs_w2.y, abs_w2.x, abs_w2.x >= abs_w2.y);
@@ -155,7 +155,7 @@ fn unitpack_crytek_bfn24_encode_float(v: vec3<f32>, fetched: f32) -> vec3<f32> {
 // Portable (as the header says): the same code on every such implementation; denormal input
 //   components count as zero.
 fn unitpack_crytek_bfn24_encode(v: vec3<f32>, fetched: f32) -> u32 {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -163,9 +163,9 @@ fn unitpack_crytek_bfn24_encode(v: vec3<f32>, fetched: f32) -> u32 {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let abs_w2 = abs(w2);
     let t1 = select(abs_w2.y, abs_w2.x, abs_w2.x >= abs_w2.y);
@@ -179,21 +179,21 @@ fn unitpack_crytek_bfn24_encode(v: vec3<f32>, fetched: f32) -> u32 {
     let nudge = select(step_down, 1.0f, (ratio_estimate + 1.0f) * t2 <= big);
     let ratio = ratio_estimate + nudge;
     let t4 = u32(ratio) * k_u;
-    let t5 = select(128u + (t4 >> 21u), 128u - ((t4 + 0x1fffffu) >> 21u), w2.x < 0.0f);
+    let t5 = select(128u + (t4 >> 21u), 128u - ((t4 + 0x1fffffu) >> 21u), 0.0f > w2.x);
     let big2 = abs_w2.y * 1048576.0f;
     let ratio_estimate2 = floor(abs_w2.y / t2 * 1048576.0f);
     let step_down2 = select(0.0f, -1.0f, ratio_estimate2 * t2 > big2);
     let nudge2 = select(step_down2, 1.0f, (ratio_estimate2 + 1.0f) * t2 <= big2);
     let ratio2 = ratio_estimate2 + nudge2;
     let t6 = u32(ratio2) * k_u;
-    let t7 = select(128u + (t6 >> 21u), 128u - ((t6 + 0x1fffffu) >> 21u), w2.y < 0.0f);
+    let t7 = select(128u + (t6 >> 21u), 128u - ((t6 + 0x1fffffu) >> 21u), 0.0f > w2.y);
     let big3 = abs_w2.z * 1048576.0f;
     let ratio_estimate3 = floor(abs_w2.z / t2 * 1048576.0f);
     let step_down3 = select(0.0f, -1.0f, ratio_estimate3 * t2 > big3);
     let nudge3 = select(step_down3, 1.0f, (ratio_estimate3 + 1.0f) * t2 <= big3);
     let ratio3 = ratio_estimate3 + nudge3;
     let t8 = u32(ratio3) * k_u;
-    let t9 = select(128u + (t8 >> 21u), 128u - ((t8 + 0x1fffffu) >> 21u), w2.z < 0.0f);
+    let t9 = select(128u + (t8 >> 21u), 128u - ((t8 + 0x1fffffu) >> 21u), 0.0f > w2.z);
     let t10 = u32(f32(t5)) | (u32(f32(t7)) << 8u) | (u32(f32(t9)) << 16u);
     return select(0xff8080u, t10, ok);
 }

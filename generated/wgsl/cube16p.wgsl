@@ -64,7 +64,7 @@ fn unitpack_cube16p_decode(code: u32) -> vec3<f32> {
 //   comparisons or rounded to a unit) is nearest the input's by exact squared distance, the first
 //   on ties.
 fn unitpack_cube16p_encode_codes(v: vec3<f32>) -> vec3<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -72,15 +72,15 @@ fn unitpack_cube16p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let abs_w2 = abs(w2);
     let t1 = abs_w2.z >= abs_w2.x && abs_w2.z >= abs_w2.y;
     let t2 = abs_w2.y >= abs_w2.x;
     let major = select(select(w2.x, w2.y, t2), w2.z, t1);
-    let face = select(select(0.0f, 2.0f, t2), 4.0f, t1) + select(0.0f, 1.0f, major < 0.0f);
+    let face = select(select(0.0f, 2.0f, t2), 4.0f, t1) + select(0.0f, 1.0f, 0.0f > major);
     let abs_major = abs(major);
     let t3 = select(select(w2.yz, w2.zx, t2), w2.xy, t1) * vec2<f32>(63.5f, 31.5f);
     let t4 = round(t3 / abs_major + vec2<f32>(63.5f, 31.5f));
@@ -94,7 +94,7 @@ fn unitpack_cube16p_encode_codes(v: vec3<f32>) -> vec3<f32> {
                 vec2<f32>(1.0f),
                 t3 >= (t6 - vec2<f32>(62.5f, 30.5f)) * abs_major
             ),
-            t6 < vec2<f32>(127.0f, 63.0f)
+            vec2<f32>(127.0f, 63.0f) > t6
         );
     let t8 = select(
         vec2<f32>(0.0f),
@@ -276,7 +276,7 @@ fn unitpack_cube16p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let hi12 = hi11 + (lo11 >> 24u);
     let lo12 = lo11 & 0xffffffu;
     let dist2 = f32(hi12) * 16777216.0f + f32(lo12);
-    let t23 = s_up <= 127.0f && base.y <= 63.0f && dist2 < dist;
+    let t23 = s_up <= 127.0f && base.y <= 63.0f && dist > dist2;
     let best = select(cand, cand2, t23);
     let best_d = select(dist, dist2, t23);
     let t24 = vec2<f32>(base.x, t_up);
@@ -339,7 +339,7 @@ fn unitpack_cube16p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let hi16 = hi15 + (lo15 >> 24u);
     let lo16 = lo15 & 0xffffffu;
     let dist3 = f32(hi16) * 16777216.0f + f32(lo16);
-    let t30 = base.x <= 127.0f && t_up <= 63.0f && dist3 < best_d;
+    let t30 = base.x <= 127.0f && t_up <= 63.0f && best_d > dist3;
     let best2 = select(best, cand3, t30);
     let best_d2 = select(best_d, dist3, t30);
     let t31 = base + 1.0f;
@@ -402,7 +402,7 @@ fn unitpack_cube16p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let hi20 = hi19 + (lo19 >> 24u);
     let lo20 = lo19 & 0xffffffu;
     let dist4 = f32(hi20) * 16777216.0f + f32(lo20);
-    let best3 = select(best2, cand4, s_up <= 127.0f && t_up <= 63.0f && dist4 < best_d2);
+    let best3 = select(best2, cand4, s_up <= 127.0f && t_up <= 63.0f && best_d2 > dist4);
     return vec3<f32>(best3, face);
 }
 

@@ -64,7 +64,7 @@ fn unitpack_cube32_decode(code: u32) -> vec3<f32> {
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 fn unitpack_cube32_encode_float(v: vec3<f32>) -> vec3<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -72,15 +72,15 @@ fn unitpack_cube32_encode_float(v: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let abs_w2 = abs(w2);
     let t1 = abs_w2.z >= abs_w2.x && abs_w2.z >= abs_w2.y;
     let t2 = abs_w2.y >= abs_w2.x;
     let major = select(select(w2.x, w2.y, t2), w2.z, t1);
-    let face = select(select(0.0f, 2.0f, t2), 4.0f, t1) + select(0.0f, 1.0f, major < 0.0f);
+    let face = select(select(0.0f, 2.0f, t2), 4.0f, t1) + select(0.0f, 1.0f, 0.0f > major);
     let enc = select(select(w2.yz, w2.zx, t2), w2.xy, t1) / abs(major) * 0.5f + 0.5f;
     return vec3<f32>(enc, face * 0.14285715f);
 }
@@ -89,7 +89,7 @@ fn unitpack_cube32_encode_float(v: vec3<f32>) -> vec3<f32> {
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 fn unitpack_cube32_round_codes(v: vec3<f32>) -> vec3<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -97,15 +97,15 @@ fn unitpack_cube32_round_codes(v: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let abs_w2 = abs(w2);
     let t1 = abs_w2.z >= abs_w2.x && abs_w2.z >= abs_w2.y;
     let t2 = abs_w2.y >= abs_w2.x;
     let major = select(select(w2.x, w2.y, t2), w2.z, t1);
-    let face = select(select(0.0f, 2.0f, t2), 4.0f, t1) + select(0.0f, 1.0f, major < 0.0f);
+    let face = select(select(0.0f, 2.0f, t2), 4.0f, t1) + select(0.0f, 1.0f, 0.0f > major);
     let abs_major = abs(major);
     let t3 = select(select(w2.yz, w2.zx, t2), w2.xy, t1) * vec2<f32>(16383.5f, 8191.5f);
     let t4 = round(t3 / abs_major + vec2<f32>(16383.5f, 8191.5f));
@@ -119,7 +119,7 @@ fn unitpack_cube32_round_codes(v: vec3<f32>) -> vec3<f32> {
                 vec2<f32>(1.0f),
                 t3 >= (t6 - vec2<f32>(16383.0f, 8191.0f)) * abs_major
             ),
-            t6 < vec2<f32>(32767.0f, 16383.0f)
+            vec2<f32>(32767.0f, 16383.0f) > t6
         );
     let t8 = select(
         vec2<f32>(0.0f),

@@ -68,7 +68,7 @@ fn unitpack_diamond32_decode(code: u32) -> unitpack_diamond32_frame {
             t8,
             (1023.0f - abs_t8.yx)
                 * select(vec2<f32>(-1.0f), vec2<f32>(1.0f), t8 >= vec2<f32>(0.0f)),
-            pz < 0.0f
+            0.0f > pz
         ),
         pz
     );
@@ -118,7 +118,7 @@ fn unitpack_diamond32_decode_tbn(code: u32) -> unitpack_diamond32_tbn {
             t8,
             (1023.0f - abs_t8.yx)
                 * select(vec2<f32>(-1.0f), vec2<f32>(1.0f), t8 >= vec2<f32>(0.0f)),
-            pz < 0.0f
+            0.0f > pz
         ),
         pz
     );
@@ -155,7 +155,7 @@ fn unitpack_diamond32_decode_tbn(code: u32) -> unitpack_diamond32_tbn {
 // Portable (as the header says): the same code on every such implementation; denormal input
 //   components count as zero.
 fn unitpack_diamond32_encode(n: vec3<f32>, t: vec4<f32>) -> u32 {
-    let normal = select(n, vec3<f32>(0.0f), abs(n) < vec3<f32>(1.1754944e-38f));
+    let normal = select(n, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(n));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -163,9 +163,9 @@ fn unitpack_diamond32_encode(n: vec3<f32>, t: vec4<f32>) -> u32 {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let abs_w = abs(w);
     let l1 = abs_w.x + abs_w.y + abs_w.z;
     let n2 = select(
@@ -177,12 +177,12 @@ fn unitpack_diamond32_encode(n: vec3<f32>, t: vec4<f32>) -> u32 {
     let t1 = round(abs_n2 / l1 * 1023.0f);
     let t2 = abs_n2 * 1023.0f;
     let t3 = select(
-        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t2 < (t1 - 0.5f) * l1),
+        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), (t1 - 0.5f) * l1 > t2),
         vec2<f32>(1.0f),
         t2 >= (t1 + 0.5f) * l1
     );
     let t4 = t1 + t3;
-    let normal2 = select(vec2<f32>(0.0f), select(t4, -t4, n2 < vec2<f32>(0.0f)), ok);
+    let normal2 = select(vec2<f32>(0.0f), select(t4, -t4, vec2<f32>(0.0f) > n2), ok);
     let t5 = select(vec2<f32>(-1023.0f), normal2, normal2 >= vec2<f32>(-1023.0f));
     let abs_t5 = abs(t5);
     let pz = 1023.0f - abs_t5.x - abs_t5.y;
@@ -191,17 +191,17 @@ fn unitpack_diamond32_encode(n: vec3<f32>, t: vec4<f32>) -> u32 {
             t5,
             (1023.0f - abs_t5.yx)
                 * select(vec2<f32>(-1.0f), vec2<f32>(1.0f), t5 >= vec2<f32>(0.0f)),
-            pz < 0.0f
+            0.0f > pz
         ),
         pz
     );
-    let normal3 = select(p, vec3<f32>(0.0f), abs(p) < vec3<f32>(1.1754944e-38f));
+    let normal3 = select(p, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(p));
     let abs_normal3 = abs(normal3);
     let larger2 = select(abs_normal3.y, abs_normal3.x, abs_normal3.x >= abs_normal3.y);
     let largest2 = select(abs_normal3.z, larger2, larger2 >= abs_normal3.z);
     let scale2 = bitcast<f32>(0x7f800000u - (bitcast<u32>(largest2) & 0x7f800000u));
     let scaled2 = normal3 * scale2;
-    let w2 = select(scaled2, vec3<f32>(0.0f), abs(scaled2) < vec3<f32>(1.8189894e-12f));
+    let w2 = select(scaled2, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled2));
     let t6 = vec3<u32>(floor(abs(w2) * 2097152.0f));
     let limb1 = t6.x >> 12u;
     let limb0 = t6.x & 0xfffu;
@@ -241,15 +241,15 @@ fn unitpack_diamond32_encode(n: vec3<f32>, t: vec4<f32>) -> u32 {
     let wide = (hi4 << 24u) + lo4;
     let rest = wide - t8 * t8 + 0x40000000u;
     let n3 = select(
-        select(t8, t8 - 1u, rest < 0x40000000u - t8 + 1u),
+        select(t8, t8 - 1u, 0x40000000u - t8 + 1u > rest),
         t8 + 1u,
-        0x40000000u + t8 < rest
+        rest > 0x40000000u + t8
     );
     let rest2 = wide - n3 * n3 + 0x40000000u;
     let n4 = select(
-        select(n3, n3 - 1u, rest2 < 0x40000000u - n3 + 1u),
+        select(n3, n3 - 1u, 0x40000000u - n3 + 1u > rest2),
         n3 + 1u,
-        0x40000000u + n3 < rest2
+        rest2 > 0x40000000u + n3
     );
     let nf = f32(n4);
     let k0 = u32(round(f32(t6.x) / nf * 16777216.0f));
@@ -262,7 +262,7 @@ fn unitpack_diamond32_encode(n: vec3<f32>, t: vec4<f32>) -> u32 {
     let t13 = (f32(t12) * 4096.0f + f32(t11 & 0xfffu)) / (nf * 2.0f);
     let q0 = u32(floor(t13));
     let rest3 = t11 - q0 * two_n;
-    let negative = !(rest3 < 0x80000000u);
+    let negative = !(0x80000000u > rest3);
     let k0_2 = u32(round(f32(t6.y) / nf * 16777216.0f));
     let r2 = (t6.y << 24u) - k0_2 * n4;
     let t14 = r2 << 1u;
@@ -273,7 +273,7 @@ fn unitpack_diamond32_encode(n: vec3<f32>, t: vec4<f32>) -> u32 {
     let t18 = (f32(t17) * 4096.0f + f32(t16 & 0xfffu)) / (nf * 2.0f);
     let q0_2 = u32(floor(t18));
     let rest4 = t16 - q0_2 * two_n2;
-    let negative2 = !(rest4 < 0x80000000u);
+    let negative2 = !(0x80000000u > rest4);
     let k0_3 = u32(round(f32(t6.z) / nf * 16777216.0f));
     let r3 = (t6.z << 24u) - k0_3 * n4;
     let t19 = r3 << 1u;
@@ -284,11 +284,11 @@ fn unitpack_diamond32_encode(n: vec3<f32>, t: vec4<f32>) -> u32 {
     let t23 = (f32(t22) * 4096.0f + f32(t21 & 0xfffu)) / (nf * 2.0f);
     let q0_3 = u32(floor(t23));
     let rest5 = t21 - q0_3 * two_n3;
-    let negative3 = !(rest5 < 0x80000000u);
+    let negative3 = !(0x80000000u > rest5);
     let t24 = vec3<bool>(
-        !(rest3 < two_n) && !negative,
-        !(rest4 < two_n2) && !negative2,
-        !(rest5 < two_n3) && !negative3
+        !(two_n > rest3) && !negative,
+        !(two_n2 > rest4) && !negative2,
+        !(two_n3 > rest5) && !negative3
     );
     let t25 = vec3<f32>(vec3<u32>(t12, t17, t22)) * 4096.0f
         + vec3<f32>((vec3<u32>(t9, t14, t19) + n4 + vec3<u32>(t10, t15, t20)) & vec3<u32>(0xfffu));
@@ -308,7 +308,7 @@ fn unitpack_diamond32_encode(n: vec3<f32>, t: vec4<f32>) -> u32 {
             select(t30.z, t27.z, t24.z)
         );
     let t32 = t31 - 8u;
-    let t33 = vec3<u32>(0x1000000u) < t32;
+    let t33 = t32 > vec3<u32>(0x1000000u);
     let t34 = vec3<f32>(
         vec3<u32>(
             select(t32.x, (vec3<u32>(0x1000000u)).x, t33.x),
@@ -317,14 +317,14 @@ fn unitpack_diamond32_encode(n: vec3<f32>, t: vec4<f32>) -> u32 {
         )
     )
         * 5.9604645e-8f;
-    let n5 = select(t34, -t34, w2 < vec3<f32>(0.0f)) * 16777216.0f;
+    let n5 = select(t34, -t34, vec3<f32>(0.0f) > w2) * 16777216.0f;
     let b1 = select(
         vec3<f32>(n5.z, 0.0f, -n5.x),
         vec3<f32>(n5.y, -n5.x, 0.0f),
         abs(p.y) > abs(p.z)
     );
     let b2 = round(n5.yzx * b1.zxy * 5.9604645e-8f) - round(n5.zxy * b1.yzx * 5.9604645e-8f);
-    let normal4 = select(t.xyz, vec3<f32>(0.0f), abs(t.xyz) < vec3<f32>(1.1754944e-38f));
+    let normal4 = select(t.xyz, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(t.xyz));
     let abs_normal4 = abs(normal4);
     let larger3 = select(abs_normal4.y, abs_normal4.x, abs_normal4.x >= abs_normal4.y);
     let largest3 = select(abs_normal4.z, larger3, larger3 >= abs_normal4.z);
@@ -332,9 +332,9 @@ fn unitpack_diamond32_encode(n: vec3<f32>, t: vec4<f32>) -> u32 {
     let scaled3 = normal4 * scale3;
     let abs_scaled3 = abs(scaled3);
     let sum2 = abs_scaled3.x + abs_scaled3.y + abs_scaled3.z;
-    let sum_below_16_2 = sum2 < 16.0f;
+    let sum_below_16_2 = 16.0f > sum2;
     let ok2 = sum2 >= 2.0f && sum_below_16_2;
-    let w3 = select(scaled3, vec3<f32>(0.0f), abs(scaled3) < vec3<f32>(1.8189894e-12f));
+    let w3 = select(scaled3, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled3));
     let t35 = round(w3 * 2097152.0f);
     let t36 = round(t35.x * b1.x * 5.9604645e-8f) + round(t35.y * b1.y * 5.9604645e-8f);
     let u = t36 + round(t35.z * b1.z * 5.9604645e-8f);
@@ -344,16 +344,16 @@ fn unitpack_diamond32_encode(n: vec3<f32>, t: vec4<f32>) -> u32 {
     let magnitude = abs(u);
     let estimate = round(magnitude / l1_2 * 127.0f);
     let big = magnitude * 127.0f;
-    let step_down3 = select(0.0f, -1.0f, big < (estimate - 0.5f) * l1_2);
+    let step_down3 = select(0.0f, -1.0f, (estimate - 0.5f) * l1_2 > big);
     let nudge3 = select(step_down3, 1.0f, big >= (estimate + 0.5f) * l1_2);
     let t38 = estimate + nudge3;
-    let ratio = select(t38, -t38, u < 0.0f);
+    let ratio = select(t38, -t38, 0.0f > u);
     let t39 = select(127.0f + ratio, 381.0f - ratio, v >= 0.0f);
     let diamond = select(t39, 0.0f, t39 >= 508.0f);
     let codes = vec4<f32>(
         normal2,
         select(254.0f, diamond, ok2 && abs(u) + abs(v) >= 256.0f),
-        select(0.0f, 1.0f, select(1.0f, -1.0f, t.w < 0.0f) < 0.0f)
+        select(0.0f, 1.0f, 0.0f > select(1.0f, -1.0f, 0.0f > t.w))
     );
     let t40 = (u32(codes.x + 2048.0f) & 0x7ffu) | ((u32(codes.y + 2048.0f) << 11u) & 0x3ff800u);
     return t40 | (u32(codes.z) << 22u) | (u32(codes.w) << 31u);

@@ -32,14 +32,14 @@ fn unitpack_draco_oct8_decode_float(params: vec2<f32>) -> vec3<f32> {
     let t1 = round(params * 255.0f) * 0.007874016f - 1.0f;
     let t2 = 1.0f - abs(t1.x) - abs(t1.y);
     let neg_t2 = -t2;
-    let x_offset = select(neg_t2, 0.0f, neg_t2 < 0.0f);
+    let x_offset = select(neg_t2, 0.0f, 0.0f > neg_t2);
     let v = vec3<f32>(
         t2,
-        t1 + select(-vec2<f32>(x_offset), vec2<f32>(x_offset), t1 < vec2<f32>(0.0f))
+        t1 + select(-vec2<f32>(x_offset), vec2<f32>(x_offset), vec2<f32>(0.0f) > t1)
     );
     let v_sq = v * v;
     let norm_squared = v_sq.x + v_sq.y + v_sq.z;
-    return select(v * (1.0f / sqrt(norm_squared)), vec3<f32>(0.0f), norm_squared < 1.0000001e-6f);
+    return select(v * (1.0f / sqrt(norm_squared)), vec3<f32>(0.0f), 1.0000001e-6f > norm_squared);
 }
 
 // unitpack_draco_oct8_decode: decoder.
@@ -51,14 +51,14 @@ fn unitpack_draco_oct8_decode(code: u32) -> vec3<f32> {
     let t1 = vec2<f32>(vec2<u32>(code, code >> 8u) & vec2<u32>(255u)) * 0.007874016f - 1.0f;
     let t2 = 1.0f - abs(t1.x) - abs(t1.y);
     let neg_t2 = -t2;
-    let x_offset = select(neg_t2, 0.0f, neg_t2 < 0.0f);
+    let x_offset = select(neg_t2, 0.0f, 0.0f > neg_t2);
     let v = vec3<f32>(
         t2,
-        t1 + select(-vec2<f32>(x_offset), vec2<f32>(x_offset), t1 < vec2<f32>(0.0f))
+        t1 + select(-vec2<f32>(x_offset), vec2<f32>(x_offset), vec2<f32>(0.0f) > t1)
     );
     let v_sq = v * v;
     let norm_squared = v_sq.x + v_sq.y + v_sq.z;
-    return select(v * (1.0f / sqrt(norm_squared)), vec3<f32>(0.0f), norm_squared < 1.0000001e-6f);
+    return select(v * (1.0f / sqrt(norm_squared)), vec3<f32>(0.0f), 1.0000001e-6f > norm_squared);
 }
 
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
@@ -66,7 +66,7 @@ fn unitpack_draco_oct8_decode(code: u32) -> vec3<f32> {
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 fn unitpack_draco_oct8_round_codes(v: vec3<f32>) -> vec2<f32> {
     let abs_v = abs(v);
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -74,9 +74,9 @@ fn unitpack_draco_oct8_round_codes(v: vec3<f32>) -> vec2<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let magnitude = abs(w2);
     let l1 = magnitude.x + magnitude.y + magnitude.z;
@@ -129,21 +129,21 @@ fn unitpack_draco_oct8_round_codes(v: vec3<f32>) -> vec2<f32> {
     let t29 = t26 & 0xffffu;
     let t30 = t27 & 0xffffu;
     let t31 = t27 >> 16u;
-    let t32 = w2.x < 0.0f;
-    let t33 = !(t13 < t21) && !(t21 < t13) && (t20 < t12 || !(t12 < t20));
-    let t34 = !(t14 < t22) && !(t22 < t14) && (t21 < t13 || t33);
-    let t35 = !(t15 < t23) && !(t23 < t15) && (t22 < t14 || t34);
-    let t36 = !(t13 < t21) && !(t21 < t13) && t20 < t12;
-    let t37 = !(t14 < t22) && !(t22 < t14) && (t21 < t13 || t36);
-    let t38 = !(t15 < t23) && !(t23 < t15) && (t22 < t14 || t37);
-    let t39 = ((t23 < t15 || t35) && !t32) || ((t23 < t15 || t38) && t32);
-    let t40 = !(t29 < t13) && !(t13 < t29) && t12 < t28;
-    let t41 = !(t30 < t14) && !(t14 < t30) && (t13 < t29 || t40);
-    let t42 = !(t31 < t15) && !(t15 < t31) && (t14 < t30 || t41);
-    let t43 = !(t29 < t13) && !(t13 < t29) && (t12 < t28 || !(t28 < t12));
-    let t44 = !(t30 < t14) && !(t14 < t30) && (t13 < t29 || t43);
-    let t45 = !(t31 < t15) && !(t15 < t31) && (t14 < t30 || t44);
-    let t46 = ((t15 < t31 || t42) && !t32) || ((t15 < t31 || t45) && t32);
+    let t32 = 0.0f > w2.x;
+    let t33 = !(t21 > t13) && !(t13 > t21) && (t12 > t20 || !(t20 > t12));
+    let t34 = !(t22 > t14) && !(t14 > t22) && (t13 > t21 || t33);
+    let t35 = !(t23 > t15) && !(t15 > t23) && (t14 > t22 || t34);
+    let t36 = !(t21 > t13) && !(t13 > t21) && t12 > t20;
+    let t37 = !(t22 > t14) && !(t14 > t22) && (t13 > t21 || t36);
+    let t38 = !(t23 > t15) && !(t15 > t23) && (t14 > t22 || t37);
+    let t39 = ((t15 > t23 || t35) && !t32) || ((t15 > t23 || t38) && t32);
+    let t40 = !(t13 > t29) && !(t29 > t13) && t28 > t12;
+    let t41 = !(t14 > t30) && !(t30 > t14) && (t29 > t13 || t40);
+    let t42 = !(t15 > t31) && !(t31 > t15) && (t30 > t14 || t41);
+    let t43 = !(t13 > t29) && !(t29 > t13) && (t28 > t12 || !(t12 > t28));
+    let t44 = !(t14 > t30) && !(t30 > t14) && (t29 > t13 || t43);
+    let t45 = !(t15 > t31) && !(t31 > t15) && (t30 > t14 || t44);
+    let t46 = ((t31 > t15 || t42) && !t32) || ((t31 > t15 || t45) && t32);
     let t47 = estimate + select(0.0f, 1.0f, t39) - select(0.0f, 1.0f, estimate > 0.0f && t46);
     let i0 = select(t47, -t47, t32);
     let t48 = round(magnitude.y / l1 * 127.0f);
@@ -172,21 +172,21 @@ fn unitpack_draco_oct8_round_codes(v: vec3<f32>) -> vec2<f32> {
     let t69 = t66 & 0xffffu;
     let t70 = t67 & 0xffffu;
     let t71 = t67 >> 16u;
-    let t72 = w2.y < 0.0f;
-    let t73 = !(t53 < t61) && !(t61 < t53) && (t60 < t52 || !(t52 < t60));
-    let t74 = !(t54 < t62) && !(t62 < t54) && (t61 < t53 || t73);
-    let t75 = !(t55 < t63) && !(t63 < t55) && (t62 < t54 || t74);
-    let t76 = !(t53 < t61) && !(t61 < t53) && t60 < t52;
-    let t77 = !(t54 < t62) && !(t62 < t54) && (t61 < t53 || t76);
-    let t78 = !(t55 < t63) && !(t63 < t55) && (t62 < t54 || t77);
-    let t79 = ((t63 < t55 || t75) && !t72) || ((t63 < t55 || t78) && t72);
-    let t80 = !(t69 < t53) && !(t53 < t69) && t52 < t68;
-    let t81 = !(t70 < t54) && !(t54 < t70) && (t53 < t69 || t80);
-    let t82 = !(t71 < t55) && !(t55 < t71) && (t54 < t70 || t81);
-    let t83 = !(t69 < t53) && !(t53 < t69) && (t52 < t68 || !(t68 < t52));
-    let t84 = !(t70 < t54) && !(t54 < t70) && (t53 < t69 || t83);
-    let t85 = !(t71 < t55) && !(t55 < t71) && (t54 < t70 || t84);
-    let t86 = ((t55 < t71 || t82) && !t72) || ((t55 < t71 || t85) && t72);
+    let t72 = 0.0f > w2.y;
+    let t73 = !(t61 > t53) && !(t53 > t61) && (t52 > t60 || !(t60 > t52));
+    let t74 = !(t62 > t54) && !(t54 > t62) && (t53 > t61 || t73);
+    let t75 = !(t63 > t55) && !(t55 > t63) && (t54 > t62 || t74);
+    let t76 = !(t61 > t53) && !(t53 > t61) && t52 > t60;
+    let t77 = !(t62 > t54) && !(t54 > t62) && (t53 > t61 || t76);
+    let t78 = !(t63 > t55) && !(t55 > t63) && (t54 > t62 || t77);
+    let t79 = ((t55 > t63 || t75) && !t72) || ((t55 > t63 || t78) && t72);
+    let t80 = !(t53 > t69) && !(t69 > t53) && t68 > t52;
+    let t81 = !(t54 > t70) && !(t70 > t54) && (t69 > t53 || t80);
+    let t82 = !(t55 > t71) && !(t71 > t55) && (t70 > t54 || t81);
+    let t83 = !(t53 > t69) && !(t69 > t53) && (t68 > t52 || !(t52 > t68));
+    let t84 = !(t54 > t70) && !(t70 > t54) && (t69 > t53 || t83);
+    let t85 = !(t55 > t71) && !(t71 > t55) && (t70 > t54 || t84);
+    let t86 = ((t71 > t55 || t82) && !t72) || ((t71 > t55 || t85) && t72);
     let t87 = estimate2 + select(0.0f, 1.0f, t79);
     let t88 = select(0.0f, 1.0f, estimate2 > 0.0f && t86);
     let t89 = t87 - t88;
@@ -196,34 +196,34 @@ fn unitpack_draco_oct8_round_codes(v: vec3<f32>) -> vec2<f32> {
     let abs_i1 = abs(i1);
     let i2 = t90 - abs_i1;
     let t91 = select(i1 - i2, i1 + i2, i1 > 0.0f);
-    let t92 = -select(i2, 0.0f, i2 < 0.0f);
+    let t92 = -select(i2, 0.0f, 0.0f > i2);
     let t93 = select(
         vec2<f32>(t87, t90) - vec2<f32>(t88, abs_i1),
         vec2<f32>(neg_t89, 0.0f),
-        vec2<f32>(w2.y, i2) < vec2<f32>(0.0f)
+        vec2<f32>(0.0f) > vec2<f32>(w2.y, i2)
     );
-    let t94 = select(t93, vec2<f32>(t91, t92), vec2<f32>(i2, v.z) < vec2<f32>(0.0f));
+    let t94 = select(t93, vec2<f32>(t91, t92), vec2<f32>(0.0f) > vec2<f32>(i2, v.z));
     let t95 = select(
         vec2<f32>(t90, t87) - vec2<f32>(abs_i1, t88),
         vec2<f32>(0.0f, neg_t89),
-        vec2<f32>(i2, w2.y) < vec2<f32>(0.0f)
+        vec2<f32>(0.0f) > vec2<f32>(i2, w2.y)
     );
-    let t96 = select(t95, vec2<f32>(t92, t91), vec2<f32>(v.z, i2) < vec2<f32>(0.0f));
+    let t96 = select(t95, vec2<f32>(t92, t91), vec2<f32>(0.0f) > vec2<f32>(v.z, i2));
     let st = select(
-        select(254.0f - abs(t96), abs(t96), t94 < vec2<f32>(0.0f)),
+        select(254.0f - abs(t96), abs(t96), vec2<f32>(0.0f) > t94),
         t94 + 127.0f,
         i0 >= 0.0f
     );
     let t97 = (st.x == 0.0f && (st.y == 0.0f || st.y == 254.0f))
         || (st.x == 254.0f && st.y == 0.0f);
-    let t98 = (st.x == 0.0f && st.y > 127.0f) || (st.x == 254.0f && st.y < 127.0f);
-    let t99 = (st.y == 254.0f && st.x < 127.0f) || (st.y == 0.0f && st.x > 127.0f);
-    let t100 = (st.x == 0.0f && st.y > 127.0f) || (st.x == 254.0f && st.y < 127.0f);
+    let t98 = (st.x == 0.0f && st.y > 127.0f) || (st.x == 254.0f && 127.0f > st.y);
+    let t99 = (st.y == 254.0f && 127.0f > st.x) || (st.y == 0.0f && st.x > 127.0f);
+    let t100 = (st.x == 0.0f && st.y > 127.0f) || (st.x == 254.0f && 127.0f > st.y);
     let t101 = bitcast<vec3<u32>>(v) & vec3<u32>(0x7fffffffu);
-    let t102 = !(t101.x < 0x7f800001u) || !(t101.y < 0x7f800001u) || !(t101.z < 0x7f800001u);
-    let t103 = (!(t101.x < 0x7f800000u) && !!(t101.x < 0x7f800001u))
-        || (!(t101.y < 0x7f800000u) && !!(t101.y < 0x7f800001u));
-    let t104 = t103 || (!(t101.z < 0x7f800000u) && !!(t101.z < 0x7f800001u));
+    let t102 = !(0x7f800001u > t101.x) || !(0x7f800001u > t101.y) || !(0x7f800001u > t101.z);
+    let t103 = (!(0x7f800000u > t101.x) && !!(0x7f800001u > t101.x))
+        || (!(0x7f800000u > t101.y) && !!(0x7f800001u > t101.y));
+    let t104 = t103 || (!(0x7f800000u > t101.z) && !!(0x7f800001u > t101.z));
     let t105 = select(
         vec2<f32>(select(st.x, 254.0f - st.x, t99), st.y),
         vec2<f32>(st.x, 254.0f - st.y),
@@ -259,7 +259,7 @@ fn unitpack_draco_oct8_encode_float(v: vec3<f32>) -> vec2<f32> {
 //   every implementation the include's header names.
 fn unitpack_draco_oct8_encode(v: vec3<f32>) -> u32 {
     let abs_v = abs(v);
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -267,9 +267,9 @@ fn unitpack_draco_oct8_encode(v: vec3<f32>) -> u32 {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let magnitude = abs(w2);
     let l1 = magnitude.x + magnitude.y + magnitude.z;
@@ -322,21 +322,21 @@ fn unitpack_draco_oct8_encode(v: vec3<f32>) -> u32 {
     let t29 = t26 & 0xffffu;
     let t30 = t27 & 0xffffu;
     let t31 = t27 >> 16u;
-    let t32 = w2.x < 0.0f;
-    let t33 = !(t13 < t21) && !(t21 < t13) && (t20 < t12 || !(t12 < t20));
-    let t34 = !(t14 < t22) && !(t22 < t14) && (t21 < t13 || t33);
-    let t35 = !(t15 < t23) && !(t23 < t15) && (t22 < t14 || t34);
-    let t36 = !(t13 < t21) && !(t21 < t13) && t20 < t12;
-    let t37 = !(t14 < t22) && !(t22 < t14) && (t21 < t13 || t36);
-    let t38 = !(t15 < t23) && !(t23 < t15) && (t22 < t14 || t37);
-    let t39 = ((t23 < t15 || t35) && !t32) || ((t23 < t15 || t38) && t32);
-    let t40 = !(t29 < t13) && !(t13 < t29) && t12 < t28;
-    let t41 = !(t30 < t14) && !(t14 < t30) && (t13 < t29 || t40);
-    let t42 = !(t31 < t15) && !(t15 < t31) && (t14 < t30 || t41);
-    let t43 = !(t29 < t13) && !(t13 < t29) && (t12 < t28 || !(t28 < t12));
-    let t44 = !(t30 < t14) && !(t14 < t30) && (t13 < t29 || t43);
-    let t45 = !(t31 < t15) && !(t15 < t31) && (t14 < t30 || t44);
-    let t46 = ((t15 < t31 || t42) && !t32) || ((t15 < t31 || t45) && t32);
+    let t32 = 0.0f > w2.x;
+    let t33 = !(t21 > t13) && !(t13 > t21) && (t12 > t20 || !(t20 > t12));
+    let t34 = !(t22 > t14) && !(t14 > t22) && (t13 > t21 || t33);
+    let t35 = !(t23 > t15) && !(t15 > t23) && (t14 > t22 || t34);
+    let t36 = !(t21 > t13) && !(t13 > t21) && t12 > t20;
+    let t37 = !(t22 > t14) && !(t14 > t22) && (t13 > t21 || t36);
+    let t38 = !(t23 > t15) && !(t15 > t23) && (t14 > t22 || t37);
+    let t39 = ((t15 > t23 || t35) && !t32) || ((t15 > t23 || t38) && t32);
+    let t40 = !(t13 > t29) && !(t29 > t13) && t28 > t12;
+    let t41 = !(t14 > t30) && !(t30 > t14) && (t29 > t13 || t40);
+    let t42 = !(t15 > t31) && !(t31 > t15) && (t30 > t14 || t41);
+    let t43 = !(t13 > t29) && !(t29 > t13) && (t28 > t12 || !(t12 > t28));
+    let t44 = !(t14 > t30) && !(t30 > t14) && (t29 > t13 || t43);
+    let t45 = !(t15 > t31) && !(t31 > t15) && (t30 > t14 || t44);
+    let t46 = ((t31 > t15 || t42) && !t32) || ((t31 > t15 || t45) && t32);
     let t47 = estimate + select(0.0f, 1.0f, t39) - select(0.0f, 1.0f, estimate > 0.0f && t46);
     let i0 = select(t47, -t47, t32);
     let t48 = round(magnitude.y / l1 * 127.0f);
@@ -365,21 +365,21 @@ fn unitpack_draco_oct8_encode(v: vec3<f32>) -> u32 {
     let t69 = t66 & 0xffffu;
     let t70 = t67 & 0xffffu;
     let t71 = t67 >> 16u;
-    let t72 = w2.y < 0.0f;
-    let t73 = !(t53 < t61) && !(t61 < t53) && (t60 < t52 || !(t52 < t60));
-    let t74 = !(t54 < t62) && !(t62 < t54) && (t61 < t53 || t73);
-    let t75 = !(t55 < t63) && !(t63 < t55) && (t62 < t54 || t74);
-    let t76 = !(t53 < t61) && !(t61 < t53) && t60 < t52;
-    let t77 = !(t54 < t62) && !(t62 < t54) && (t61 < t53 || t76);
-    let t78 = !(t55 < t63) && !(t63 < t55) && (t62 < t54 || t77);
-    let t79 = ((t63 < t55 || t75) && !t72) || ((t63 < t55 || t78) && t72);
-    let t80 = !(t69 < t53) && !(t53 < t69) && t52 < t68;
-    let t81 = !(t70 < t54) && !(t54 < t70) && (t53 < t69 || t80);
-    let t82 = !(t71 < t55) && !(t55 < t71) && (t54 < t70 || t81);
-    let t83 = !(t69 < t53) && !(t53 < t69) && (t52 < t68 || !(t68 < t52));
-    let t84 = !(t70 < t54) && !(t54 < t70) && (t53 < t69 || t83);
-    let t85 = !(t71 < t55) && !(t55 < t71) && (t54 < t70 || t84);
-    let t86 = ((t55 < t71 || t82) && !t72) || ((t55 < t71 || t85) && t72);
+    let t72 = 0.0f > w2.y;
+    let t73 = !(t61 > t53) && !(t53 > t61) && (t52 > t60 || !(t60 > t52));
+    let t74 = !(t62 > t54) && !(t54 > t62) && (t53 > t61 || t73);
+    let t75 = !(t63 > t55) && !(t55 > t63) && (t54 > t62 || t74);
+    let t76 = !(t61 > t53) && !(t53 > t61) && t52 > t60;
+    let t77 = !(t62 > t54) && !(t54 > t62) && (t53 > t61 || t76);
+    let t78 = !(t63 > t55) && !(t55 > t63) && (t54 > t62 || t77);
+    let t79 = ((t55 > t63 || t75) && !t72) || ((t55 > t63 || t78) && t72);
+    let t80 = !(t53 > t69) && !(t69 > t53) && t68 > t52;
+    let t81 = !(t54 > t70) && !(t70 > t54) && (t69 > t53 || t80);
+    let t82 = !(t55 > t71) && !(t71 > t55) && (t70 > t54 || t81);
+    let t83 = !(t53 > t69) && !(t69 > t53) && (t68 > t52 || !(t52 > t68));
+    let t84 = !(t54 > t70) && !(t70 > t54) && (t69 > t53 || t83);
+    let t85 = !(t55 > t71) && !(t71 > t55) && (t70 > t54 || t84);
+    let t86 = ((t71 > t55 || t82) && !t72) || ((t71 > t55 || t85) && t72);
     let t87 = estimate2 + select(0.0f, 1.0f, t79);
     let t88 = select(0.0f, 1.0f, estimate2 > 0.0f && t86);
     let t89 = t87 - t88;
@@ -389,34 +389,34 @@ fn unitpack_draco_oct8_encode(v: vec3<f32>) -> u32 {
     let abs_i1 = abs(i1);
     let i2 = t90 - abs_i1;
     let t91 = select(i1 - i2, i1 + i2, i1 > 0.0f);
-    let t92 = -select(i2, 0.0f, i2 < 0.0f);
+    let t92 = -select(i2, 0.0f, 0.0f > i2);
     let t93 = select(
         vec2<f32>(t87, t90) - vec2<f32>(t88, abs_i1),
         vec2<f32>(neg_t89, 0.0f),
-        vec2<f32>(w2.y, i2) < vec2<f32>(0.0f)
+        vec2<f32>(0.0f) > vec2<f32>(w2.y, i2)
     );
-    let t94 = select(t93, vec2<f32>(t91, t92), vec2<f32>(i2, v.z) < vec2<f32>(0.0f));
+    let t94 = select(t93, vec2<f32>(t91, t92), vec2<f32>(0.0f) > vec2<f32>(i2, v.z));
     let t95 = select(
         vec2<f32>(t90, t87) - vec2<f32>(abs_i1, t88),
         vec2<f32>(0.0f, neg_t89),
-        vec2<f32>(i2, w2.y) < vec2<f32>(0.0f)
+        vec2<f32>(0.0f) > vec2<f32>(i2, w2.y)
     );
-    let t96 = select(t95, vec2<f32>(t92, t91), vec2<f32>(v.z, i2) < vec2<f32>(0.0f));
+    let t96 = select(t95, vec2<f32>(t92, t91), vec2<f32>(0.0f) > vec2<f32>(v.z, i2));
     let st = select(
-        select(254.0f - abs(t96), abs(t96), t94 < vec2<f32>(0.0f)),
+        select(254.0f - abs(t96), abs(t96), vec2<f32>(0.0f) > t94),
         t94 + 127.0f,
         i0 >= 0.0f
     );
     let t97 = (st.x == 0.0f && (st.y == 0.0f || st.y == 254.0f))
         || (st.x == 254.0f && st.y == 0.0f);
-    let t98 = (st.x == 0.0f && st.y > 127.0f) || (st.x == 254.0f && st.y < 127.0f);
-    let t99 = (st.y == 254.0f && st.x < 127.0f) || (st.y == 0.0f && st.x > 127.0f);
-    let t100 = (st.x == 0.0f && st.y > 127.0f) || (st.x == 254.0f && st.y < 127.0f);
+    let t98 = (st.x == 0.0f && st.y > 127.0f) || (st.x == 254.0f && 127.0f > st.y);
+    let t99 = (st.y == 254.0f && 127.0f > st.x) || (st.y == 0.0f && st.x > 127.0f);
+    let t100 = (st.x == 0.0f && st.y > 127.0f) || (st.x == 254.0f && 127.0f > st.y);
     let t101 = bitcast<vec3<u32>>(v) & vec3<u32>(0x7fffffffu);
-    let t102 = !(t101.x < 0x7f800001u) || !(t101.y < 0x7f800001u) || !(t101.z < 0x7f800001u);
-    let t103 = (!(t101.x < 0x7f800000u) && !!(t101.x < 0x7f800001u))
-        || (!(t101.y < 0x7f800000u) && !!(t101.y < 0x7f800001u));
-    let t104 = t103 || (!(t101.z < 0x7f800000u) && !!(t101.z < 0x7f800001u));
+    let t102 = !(0x7f800001u > t101.x) || !(0x7f800001u > t101.y) || !(0x7f800001u > t101.z);
+    let t103 = (!(0x7f800000u > t101.x) && !!(0x7f800001u > t101.x))
+        || (!(0x7f800000u > t101.y) && !!(0x7f800001u > t101.y));
+    let t104 = t103 || (!(0x7f800000u > t101.z) && !!(0x7f800001u > t101.z));
     let t105 = select(
         vec2<f32>(select(st.x, 254.0f - st.x, t99), st.y),
         vec2<f32>(st.x, 254.0f - st.y),

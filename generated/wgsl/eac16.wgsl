@@ -33,7 +33,7 @@ fn unitpack_eac16_sincos_pi(x: f32) -> vec2<f32> {
     let t2 = (((-0.02580689f * c2 + 0.23533063f) * c2 + (-1.3352628f)) * c2 + 4.058712f) * c2;
     let co = (t2 + (-4.934802f)) * c2 + 1.0f;
     let t3 = select(vec2<f32>(s, co), vec2<f32>(co, s), swap);
-    return select(t3, -t3, vec2<bool>((x < 0.0f), back));
+    return select(t3, -t3, vec2<bool>(0.0f > x, back));
 }
 
 // unitpack_eac16_decode_float: decoder, float form.
@@ -46,26 +46,26 @@ fn unitpack_eac16_sincos_pi(x: f32) -> vec2<f32> {
 fn unitpack_eac16_decode_float(params: vec2<f32>) -> vec3<f32> {
     let t1 = round(params * 255.0f);
     let i = u32(t1.x) + (u32(t1.y) << 8u);
-    let i2 = select(0xfd7fu, i, i < 0xfd7fu);
+    let i2 = select(0xfd7fu, i, 0xfd7fu > i);
     let t2 = 0.0f
-        + select(1.0f, 0.0f, i2 < 10816u)
-        + select(1.0f, 0.0f, i2 < 21632u)
-        + select(1.0f, 0.0f, i2 < 32448u);
-    let face = t2 + select(1.0f, 0.0f, i2 < 0xa900u) + select(1.0f, 0.0f, i2 < 54080u);
+        + select(1.0f, 0.0f, 10816u > i2)
+        + select(1.0f, 0.0f, 21632u > i2)
+        + select(1.0f, 0.0f, 32448u > i2);
+    let face = t2 + select(1.0f, 0.0f, 0xa900u > i2) + select(1.0f, 0.0f, 54080u > i2);
     let r = i2 - u32(face) * 10816u;
-    let t3 = select(64u, 0u, r < 0x1a00u);
+    let t3 = select(64u, 0u, 0x1a00u > r);
     let t4 = t3 + 32u;
-    let t5 = select(t4, t3, r < t4 * 104u);
+    let t5 = select(t4, t3, t4 * 104u > r);
     let t6 = t5 + 16u;
-    let t7 = select(t6, t5, r < t6 * 104u);
+    let t7 = select(t6, t5, t6 * 104u > r);
     let t8 = t7 + 8u;
-    let t9 = select(t8, t7, r < t8 * 104u);
+    let t9 = select(t8, t7, t8 * 104u > r);
     let t10 = t9 + 4u;
-    let t11 = select(t10, t9, r < t10 * 104u);
+    let t11 = select(t10, t9, t10 * 104u > r);
     let t12 = t11 + 2u;
-    let t13 = select(t12, t11, r < t12 * 104u);
+    let t13 = select(t12, t11, t12 * 104u > r);
     let t14 = t13 + 1u;
-    let row = select(t14, t13, r < t14 * 104u);
+    let row = select(t14, t13, t14 * 104u > r);
     let column = r - row * 104u;
     let cs = unitpack_eac16_sincos_pi(f32(column) * 0.004854369f - 0.25f);
     let ct = unitpack_eac16_sincos_pi(f32(row) * 0.004854369f - 0.25f);
@@ -91,26 +91,26 @@ fn unitpack_eac16_decode_float(params: vec2<f32>) -> vec3<f32> {
 fn unitpack_eac16_decode(code: u32) -> vec3<f32> {
     let t1 = vec2<f32>(vec2<u32>(code, code >> 8u) & vec2<u32>(255u));
     let i = u32(t1.x) + (u32(t1.y) << 8u);
-    let i2 = select(0xfd7fu, i, i < 0xfd7fu);
+    let i2 = select(0xfd7fu, i, 0xfd7fu > i);
     let t2 = 0.0f
-        + select(1.0f, 0.0f, i2 < 10816u)
-        + select(1.0f, 0.0f, i2 < 21632u)
-        + select(1.0f, 0.0f, i2 < 32448u);
-    let face = t2 + select(1.0f, 0.0f, i2 < 0xa900u) + select(1.0f, 0.0f, i2 < 54080u);
+        + select(1.0f, 0.0f, 10816u > i2)
+        + select(1.0f, 0.0f, 21632u > i2)
+        + select(1.0f, 0.0f, 32448u > i2);
+    let face = t2 + select(1.0f, 0.0f, 0xa900u > i2) + select(1.0f, 0.0f, 54080u > i2);
     let r = i2 - u32(face) * 10816u;
-    let t3 = select(64u, 0u, r < 0x1a00u);
+    let t3 = select(64u, 0u, 0x1a00u > r);
     let t4 = t3 + 32u;
-    let t5 = select(t4, t3, r < t4 * 104u);
+    let t5 = select(t4, t3, t4 * 104u > r);
     let t6 = t5 + 16u;
-    let t7 = select(t6, t5, r < t6 * 104u);
+    let t7 = select(t6, t5, t6 * 104u > r);
     let t8 = t7 + 8u;
-    let t9 = select(t8, t7, r < t8 * 104u);
+    let t9 = select(t8, t7, t8 * 104u > r);
     let t10 = t9 + 4u;
-    let t11 = select(t10, t9, r < t10 * 104u);
+    let t11 = select(t10, t9, t10 * 104u > r);
     let t12 = t11 + 2u;
-    let t13 = select(t12, t11, r < t12 * 104u);
+    let t13 = select(t12, t11, t12 * 104u > r);
     let t14 = t13 + 1u;
-    let row = select(t14, t13, r < t14 * 104u);
+    let row = select(t14, t13, t14 * 104u > r);
     let column = r - row * 104u;
     let cs = unitpack_eac16_sincos_pi(f32(column) * 0.004854369f - 0.25f);
     let ct = unitpack_eac16_sincos_pi(f32(row) * 0.004854369f - 0.25f);
@@ -135,7 +135,7 @@ fn unitpack_eac16_decode(code: u32) -> vec3<f32> {
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 fn unitpack_eac16_encode_float(v: vec3<f32>) -> vec2<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -143,15 +143,15 @@ fn unitpack_eac16_encode_float(v: vec3<f32>) -> vec2<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let abs_w2 = abs(w2);
     let t1 = abs_w2.z >= abs_w2.x && abs_w2.z >= abs_w2.y;
     let t2 = abs_w2.y >= abs_w2.x;
     let major = select(select(w2.x, w2.y, t2), w2.z, t1);
-    let face = select(select(0.0f, 2.0f, t2), 4.0f, t1) + select(0.0f, 1.0f, major < 0.0f);
+    let face = select(select(0.0f, 2.0f, t2), 4.0f, t1) + select(0.0f, 1.0f, 0.0f > major);
     let s = select(select(w2.y, w2.z, t2), w2.x, t1);
     let t = select(select(w2.z, w2.x, t2), w2.y, t1);
     let abs_major = abs(major);
@@ -191,8 +191,8 @@ fn unitpack_eac16_encode_float(v: vec3<f32>) -> vec2<f32> {
     let h = round(r * 0.31830987f);
     let h2 = select(h, h + 2097152.0f, far);
     let h3 = select(h2, 4194304.0f - h2, y_major);
-    let h4 = select(h3, 8388608.0f - h3, abs_major < 0.0f);
-    let angle = select(h4, -h4, s < 0.0f);
+    let h4 = select(h3, 8388608.0f - h3, 0.0f > abs_major);
+    let angle = select(h4, -h4, 0.0f > s);
     let t12 = round((angle * 4.0f + 8388608.0f) * 6.1392784e-6f);
     let t13 = select(0.0f, t12, t12 >= 0.0f);
     let abs_abs_major2 = abs(abs_major);
@@ -234,8 +234,8 @@ fn unitpack_eac16_encode_float(v: vec3<f32>) -> vec2<f32> {
     let h5 = round(r2 * 0.31830987f);
     let h6 = select(h5, h5 + 2097152.0f, far2);
     let h7 = select(h6, 4194304.0f - h6, y_major2);
-    let h8 = select(h7, 8388608.0f - h7, abs_major < 0.0f);
-    let angle2 = select(h8, -h8, t < 0.0f);
+    let h8 = select(h7, 8388608.0f - h7, 0.0f > abs_major);
+    let angle2 = select(h8, -h8, 0.0f > t);
     let t23 = round((angle2 * 4.0f + 8388608.0f) * 6.1392784e-6f);
     let t24 = select(0.0f, t23, t23 >= 0.0f);
     let t25 = (u32(face) * 104u + u32(select(103.0f, t24, t24 <= 103.0f))) * 104u;
@@ -247,7 +247,7 @@ fn unitpack_eac16_encode_float(v: vec3<f32>) -> vec2<f32> {
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 fn unitpack_eac16_round_codes(v: vec3<f32>) -> vec2<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -255,15 +255,15 @@ fn unitpack_eac16_round_codes(v: vec3<f32>) -> vec2<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let abs_w2 = abs(w2);
     let t1 = abs_w2.z >= abs_w2.x && abs_w2.z >= abs_w2.y;
     let t2 = abs_w2.y >= abs_w2.x;
     let major = select(select(w2.x, w2.y, t2), w2.z, t1);
-    let face = select(select(0.0f, 2.0f, t2), 4.0f, t1) + select(0.0f, 1.0f, major < 0.0f);
+    let face = select(select(0.0f, 2.0f, t2), 4.0f, t1) + select(0.0f, 1.0f, 0.0f > major);
     let s = select(select(w2.y, w2.z, t2), w2.x, t1);
     let t = select(select(w2.z, w2.x, t2), w2.y, t1);
     let abs_major = abs(major);
@@ -303,8 +303,8 @@ fn unitpack_eac16_round_codes(v: vec3<f32>) -> vec2<f32> {
     let h = round(r * 0.31830987f);
     let h2 = select(h, h + 2097152.0f, far);
     let h3 = select(h2, 4194304.0f - h2, y_major);
-    let h4 = select(h3, 8388608.0f - h3, abs_major < 0.0f);
-    let angle = select(h4, -h4, s < 0.0f);
+    let h4 = select(h3, 8388608.0f - h3, 0.0f > abs_major);
+    let angle = select(h4, -h4, 0.0f > s);
     let t12 = round((angle * 4.0f + 8388608.0f) * 6.1392784e-6f);
     let t13 = select(0.0f, t12, t12 >= 0.0f);
     let abs_abs_major2 = abs(abs_major);
@@ -346,8 +346,8 @@ fn unitpack_eac16_round_codes(v: vec3<f32>) -> vec2<f32> {
     let h5 = round(r2 * 0.31830987f);
     let h6 = select(h5, h5 + 2097152.0f, far2);
     let h7 = select(h6, 4194304.0f - h6, y_major2);
-    let h8 = select(h7, 8388608.0f - h7, abs_major < 0.0f);
-    let angle2 = select(h8, -h8, t < 0.0f);
+    let h8 = select(h7, 8388608.0f - h7, 0.0f > abs_major);
+    let angle2 = select(h8, -h8, 0.0f > t);
     let t23 = round((angle2 * 4.0f + 8388608.0f) * 6.1392784e-6f);
     let t24 = select(0.0f, t23, t23 >= 0.0f);
     let t25 = (u32(face) * 104u + u32(select(103.0f, t24, t24 <= 103.0f))) * 104u;

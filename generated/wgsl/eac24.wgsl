@@ -33,7 +33,7 @@ fn unitpack_eac24_sincos_pi(x: f32) -> vec2<f32> {
     let t2 = (((-0.02580689f * c2 + 0.23533063f) * c2 + (-1.3352628f)) * c2 + 4.058712f) * c2;
     let co = (t2 + (-4.934802f)) * c2 + 1.0f;
     let t3 = select(vec2<f32>(s, co), vec2<f32>(co, s), swap);
-    return select(t3, -t3, vec2<bool>((x < 0.0f), back));
+    return select(t3, -t3, vec2<bool>(0.0f > x, back));
 }
 
 // unitpack_eac24_decode_float: decoder, float form.
@@ -46,34 +46,34 @@ fn unitpack_eac24_sincos_pi(x: f32) -> vec2<f32> {
 fn unitpack_eac24_decode_float(params: vec2<f32>) -> vec3<f32> {
     let t1 = round(params * 4095.0f);
     let i = u32(t1.x) + (u32(t1.y) << 12u);
-    let i2 = select(0xfff17fu, i, i < 0xfff17fu);
+    let i2 = select(0xfff17fu, i, 0xfff17fu > i);
     let t2 = 0.0f
-        + select(1.0f, 0.0f, i2 < 2795584u)
-        + select(1.0f, 0.0f, i2 < 5591168u)
-        + select(1.0f, 0.0f, i2 < 0x7ff8c0u);
-    let face = t2 + select(1.0f, 0.0f, i2 < 11182336u) + select(1.0f, 0.0f, i2 < 13977920u);
+        + select(1.0f, 0.0f, 2795584u > i2)
+        + select(1.0f, 0.0f, 5591168u > i2)
+        + select(1.0f, 0.0f, 0x7ff8c0u > i2);
+    let face = t2 + select(1.0f, 0.0f, 11182336u > i2) + select(1.0f, 0.0f, 13977920u > i2);
     let r = i2 - u32(face) * 2795584u;
-    let t3 = select(0x400u, 0u, r < 0x1a2000u);
+    let t3 = select(0x400u, 0u, 0x1a2000u > r);
     let t4 = t3 + 0x200u;
-    let t5 = select(t4, t3, r < t4 * 1672u);
+    let t5 = select(t4, t3, t4 * 1672u > r);
     let t6 = t5 + 0x100u;
-    let t7 = select(t6, t5, r < t6 * 1672u);
+    let t7 = select(t6, t5, t6 * 1672u > r);
     let t8 = t7 + 128u;
-    let t9 = select(t8, t7, r < t8 * 1672u);
+    let t9 = select(t8, t7, t8 * 1672u > r);
     let t10 = t9 + 64u;
-    let t11 = select(t10, t9, r < t10 * 1672u);
+    let t11 = select(t10, t9, t10 * 1672u > r);
     let t12 = t11 + 32u;
-    let t13 = select(t12, t11, r < t12 * 1672u);
+    let t13 = select(t12, t11, t12 * 1672u > r);
     let t14 = t13 + 16u;
-    let t15 = select(t14, t13, r < t14 * 1672u);
+    let t15 = select(t14, t13, t14 * 1672u > r);
     let t16 = t15 + 8u;
-    let t17 = select(t16, t15, r < t16 * 1672u);
+    let t17 = select(t16, t15, t16 * 1672u > r);
     let t18 = t17 + 4u;
-    let t19 = select(t18, t17, r < t18 * 1672u);
+    let t19 = select(t18, t17, t18 * 1672u > r);
     let t20 = t19 + 2u;
-    let t21 = select(t20, t19, r < t20 * 1672u);
+    let t21 = select(t20, t19, t20 * 1672u > r);
     let t22 = t21 + 1u;
-    let row = select(t22, t21, r < t22 * 1672u);
+    let row = select(t22, t21, t22 * 1672u > r);
     let column = r - row * 1672u;
     let cs = unitpack_eac24_sincos_pi(f32(column) * 0.000299222f - 0.25f);
     let ct = unitpack_eac24_sincos_pi(f32(row) * 0.000299222f - 0.25f);
@@ -99,34 +99,34 @@ fn unitpack_eac24_decode_float(params: vec2<f32>) -> vec3<f32> {
 fn unitpack_eac24_decode(code: u32) -> vec3<f32> {
     let t1 = vec2<f32>(vec2<u32>(code, code >> 12u) & vec2<u32>(0xfffu));
     let i = u32(t1.x) + (u32(t1.y) << 12u);
-    let i2 = select(0xfff17fu, i, i < 0xfff17fu);
+    let i2 = select(0xfff17fu, i, 0xfff17fu > i);
     let t2 = 0.0f
-        + select(1.0f, 0.0f, i2 < 2795584u)
-        + select(1.0f, 0.0f, i2 < 5591168u)
-        + select(1.0f, 0.0f, i2 < 0x7ff8c0u);
-    let face = t2 + select(1.0f, 0.0f, i2 < 11182336u) + select(1.0f, 0.0f, i2 < 13977920u);
+        + select(1.0f, 0.0f, 2795584u > i2)
+        + select(1.0f, 0.0f, 5591168u > i2)
+        + select(1.0f, 0.0f, 0x7ff8c0u > i2);
+    let face = t2 + select(1.0f, 0.0f, 11182336u > i2) + select(1.0f, 0.0f, 13977920u > i2);
     let r = i2 - u32(face) * 2795584u;
-    let t3 = select(0x400u, 0u, r < 0x1a2000u);
+    let t3 = select(0x400u, 0u, 0x1a2000u > r);
     let t4 = t3 + 0x200u;
-    let t5 = select(t4, t3, r < t4 * 1672u);
+    let t5 = select(t4, t3, t4 * 1672u > r);
     let t6 = t5 + 0x100u;
-    let t7 = select(t6, t5, r < t6 * 1672u);
+    let t7 = select(t6, t5, t6 * 1672u > r);
     let t8 = t7 + 128u;
-    let t9 = select(t8, t7, r < t8 * 1672u);
+    let t9 = select(t8, t7, t8 * 1672u > r);
     let t10 = t9 + 64u;
-    let t11 = select(t10, t9, r < t10 * 1672u);
+    let t11 = select(t10, t9, t10 * 1672u > r);
     let t12 = t11 + 32u;
-    let t13 = select(t12, t11, r < t12 * 1672u);
+    let t13 = select(t12, t11, t12 * 1672u > r);
     let t14 = t13 + 16u;
-    let t15 = select(t14, t13, r < t14 * 1672u);
+    let t15 = select(t14, t13, t14 * 1672u > r);
     let t16 = t15 + 8u;
-    let t17 = select(t16, t15, r < t16 * 1672u);
+    let t17 = select(t16, t15, t16 * 1672u > r);
     let t18 = t17 + 4u;
-    let t19 = select(t18, t17, r < t18 * 1672u);
+    let t19 = select(t18, t17, t18 * 1672u > r);
     let t20 = t19 + 2u;
-    let t21 = select(t20, t19, r < t20 * 1672u);
+    let t21 = select(t20, t19, t20 * 1672u > r);
     let t22 = t21 + 1u;
-    let row = select(t22, t21, r < t22 * 1672u);
+    let row = select(t22, t21, t22 * 1672u > r);
     let column = r - row * 1672u;
     let cs = unitpack_eac24_sincos_pi(f32(column) * 0.000299222f - 0.25f);
     let ct = unitpack_eac24_sincos_pi(f32(row) * 0.000299222f - 0.25f);
@@ -151,7 +151,7 @@ fn unitpack_eac24_decode(code: u32) -> vec3<f32> {
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 fn unitpack_eac24_encode_float(v: vec3<f32>) -> vec2<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -159,15 +159,15 @@ fn unitpack_eac24_encode_float(v: vec3<f32>) -> vec2<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let abs_w2 = abs(w2);
     let t1 = abs_w2.z >= abs_w2.x && abs_w2.z >= abs_w2.y;
     let t2 = abs_w2.y >= abs_w2.x;
     let major = select(select(w2.x, w2.y, t2), w2.z, t1);
-    let face = select(select(0.0f, 2.0f, t2), 4.0f, t1) + select(0.0f, 1.0f, major < 0.0f);
+    let face = select(select(0.0f, 2.0f, t2), 4.0f, t1) + select(0.0f, 1.0f, 0.0f > major);
     let s = select(select(w2.y, w2.z, t2), w2.x, t1);
     let t = select(select(w2.z, w2.x, t2), w2.y, t1);
     let abs_major = abs(major);
@@ -207,8 +207,8 @@ fn unitpack_eac24_encode_float(v: vec3<f32>) -> vec2<f32> {
     let h = round(r * 0.31830987f);
     let h2 = select(h, h + 2097152.0f, far);
     let h3 = select(h2, 4194304.0f - h2, y_major);
-    let h4 = select(h3, 8388608.0f - h3, abs_major < 0.0f);
-    let angle = select(h4, -h4, s < 0.0f);
+    let h4 = select(h3, 8388608.0f - h3, 0.0f > abs_major);
+    let angle = select(h4, -h4, 0.0f > s);
     let t12 = round((angle * 4.0f + 8388608.0f) * 9.959936e-5f);
     let t13 = select(0.0f, t12, t12 >= 0.0f);
     let abs_abs_major2 = abs(abs_major);
@@ -250,8 +250,8 @@ fn unitpack_eac24_encode_float(v: vec3<f32>) -> vec2<f32> {
     let h5 = round(r2 * 0.31830987f);
     let h6 = select(h5, h5 + 2097152.0f, far2);
     let h7 = select(h6, 4194304.0f - h6, y_major2);
-    let h8 = select(h7, 8388608.0f - h7, abs_major < 0.0f);
-    let angle2 = select(h8, -h8, t < 0.0f);
+    let h8 = select(h7, 8388608.0f - h7, 0.0f > abs_major);
+    let angle2 = select(h8, -h8, 0.0f > t);
     let t23 = round((angle2 * 4.0f + 8388608.0f) * 9.959936e-5f);
     let t24 = select(0.0f, t23, t23 >= 0.0f);
     let t25 = (u32(face) * 1672u + u32(select(1671.0f, t24, t24 <= 1671.0f))) * 1672u;
@@ -263,7 +263,7 @@ fn unitpack_eac24_encode_float(v: vec3<f32>) -> vec2<f32> {
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 fn unitpack_eac24_round_codes(v: vec3<f32>) -> vec2<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -271,15 +271,15 @@ fn unitpack_eac24_round_codes(v: vec3<f32>) -> vec2<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let abs_w2 = abs(w2);
     let t1 = abs_w2.z >= abs_w2.x && abs_w2.z >= abs_w2.y;
     let t2 = abs_w2.y >= abs_w2.x;
     let major = select(select(w2.x, w2.y, t2), w2.z, t1);
-    let face = select(select(0.0f, 2.0f, t2), 4.0f, t1) + select(0.0f, 1.0f, major < 0.0f);
+    let face = select(select(0.0f, 2.0f, t2), 4.0f, t1) + select(0.0f, 1.0f, 0.0f > major);
     let s = select(select(w2.y, w2.z, t2), w2.x, t1);
     let t = select(select(w2.z, w2.x, t2), w2.y, t1);
     let abs_major = abs(major);
@@ -319,8 +319,8 @@ fn unitpack_eac24_round_codes(v: vec3<f32>) -> vec2<f32> {
     let h = round(r * 0.31830987f);
     let h2 = select(h, h + 2097152.0f, far);
     let h3 = select(h2, 4194304.0f - h2, y_major);
-    let h4 = select(h3, 8388608.0f - h3, abs_major < 0.0f);
-    let angle = select(h4, -h4, s < 0.0f);
+    let h4 = select(h3, 8388608.0f - h3, 0.0f > abs_major);
+    let angle = select(h4, -h4, 0.0f > s);
     let t12 = round((angle * 4.0f + 8388608.0f) * 9.959936e-5f);
     let t13 = select(0.0f, t12, t12 >= 0.0f);
     let abs_abs_major2 = abs(abs_major);
@@ -362,8 +362,8 @@ fn unitpack_eac24_round_codes(v: vec3<f32>) -> vec2<f32> {
     let h5 = round(r2 * 0.31830987f);
     let h6 = select(h5, h5 + 2097152.0f, far2);
     let h7 = select(h6, 4194304.0f - h6, y_major2);
-    let h8 = select(h7, 8388608.0f - h7, abs_major < 0.0f);
-    let angle2 = select(h8, -h8, t < 0.0f);
+    let h8 = select(h7, 8388608.0f - h7, 0.0f > abs_major);
+    let angle2 = select(h8, -h8, 0.0f > t);
     let t23 = round((angle2 * 4.0f + 8388608.0f) * 9.959936e-5f);
     let t24 = select(0.0f, t23, t23 >= 0.0f);
     let t25 = (u32(face) * 1672u + u32(select(1671.0f, t24, t24 <= 1671.0f))) * 1672u;

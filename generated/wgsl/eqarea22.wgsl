@@ -61,7 +61,7 @@ fn unitpack_eqarea22_decode(code: u32) -> vec3<f32> {
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 fn unitpack_eqarea22_encode_float(v: vec3<f32>) -> vec3<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -69,9 +69,9 @@ fn unitpack_eqarea22_encode_float(v: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let fixed_f = floor(abs(w2.x) * 2097152.0f);
     let fixed2 = u32(fixed_f);
@@ -113,7 +113,7 @@ fn unitpack_eqarea22_encode_float(v: vec3<f32>) -> vec3<f32> {
     let nudge2 = select(step_down2, 1.0f, root_m1 * root_m1 <= len2);
     let root_j = root_j0 + nudge2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
-    let one_if = select(0.0f, 1.0f, w2.z < 0.0f);
+    let one_if = select(0.0f, 1.0f, 0.0f > w2.z);
     let enc = w2.xy / sqrt(root * (root + abs(w2.z))) * 0.5f + 0.5f;
     return vec3<f32>(enc, one_if);
 }
@@ -122,7 +122,7 @@ fn unitpack_eqarea22_encode_float(v: vec3<f32>) -> vec3<f32> {
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 fn unitpack_eqarea22_round_codes(v: vec3<f32>) -> vec3<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -130,9 +130,9 @@ fn unitpack_eqarea22_round_codes(v: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let fixed_f = floor(abs(w2.x) * 2097152.0f);
     let fixed2 = u32(fixed_f);
@@ -174,7 +174,7 @@ fn unitpack_eqarea22_round_codes(v: vec3<f32>) -> vec3<f32> {
     let nudge2 = select(step_down2, 1.0f, root_m1 * root_m1 <= len2);
     let root_j = root_j0 + nudge2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
-    let one_if = select(0.0f, 1.0f, w2.z < 0.0f);
+    let one_if = select(0.0f, 1.0f, 0.0f > w2.z);
     let la = root * (root + abs(w2.z));
     let sqrt_la = sqrt(la);
     let big2 = w2.x * w2.x * 1047552.25f;
@@ -187,15 +187,15 @@ fn unitpack_eqarea22_round_codes(v: vec3<f32>) -> vec3<f32> {
     let one_if3 = select(0.0f, 1.0f, big2 <= t4);
     let up = select(
         0.0f,
-        select(select(0.0f, one_if3, t3 < 0.0f), select(1.0f, one_if2, t3 > 0.0f), w2.x >= 0.0f),
-        estimate < 2047.0f
+        select(select(0.0f, one_if3, 0.0f > t3), select(1.0f, one_if2, t3 > 0.0f), w2.x >= 0.0f),
+        2047.0f > estimate
     );
     let t5 = estimate - 1.0f - 1023.0f;
     let t6 = t5 * t5 * la;
     let one_if4 = select(0.0f, 1.0f, big2 >= t6);
     let one_if5 = select(0.0f, 1.0f, big2 <= t6);
     let t7 = select(
-        select(0.0f, one_if5, t5 < 0.0f),
+        select(0.0f, one_if5, 0.0f > t5),
         select(1.0f, one_if4, t5 > 0.0f),
         w2.x >= 0.0f
     )
@@ -211,15 +211,15 @@ fn unitpack_eqarea22_round_codes(v: vec3<f32>) -> vec3<f32> {
     let one_if7 = select(0.0f, 1.0f, big2_2 <= t11);
     let up2 = select(
         0.0f,
-        select(select(0.0f, one_if7, t10 < 0.0f), select(1.0f, one_if6, t10 > 0.0f), w2.y >= 0.0f),
-        estimate2 < 1023.0f
+        select(select(0.0f, one_if7, 0.0f > t10), select(1.0f, one_if6, t10 > 0.0f), w2.y >= 0.0f),
+        1023.0f > estimate2
     );
     let t12 = estimate2 - 1.0f - 511.0f;
     let t13 = t12 * t12 * la;
     let one_if8 = select(0.0f, 1.0f, big2_2 >= t13);
     let one_if9 = select(0.0f, 1.0f, big2_2 <= t13);
     let t14 = select(
-        select(0.0f, one_if9, t12 < 0.0f),
+        select(0.0f, one_if9, 0.0f > t12),
         select(1.0f, one_if8, t12 > 0.0f),
         w2.y >= 0.0f
     )

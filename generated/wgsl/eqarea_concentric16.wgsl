@@ -73,7 +73,7 @@ fn unitpack_eqarea_concentric16_atan2_pi(minor: f32, x: f32) -> f32 {
     let abs_minor = abs(minor);
     let y_major = abs_minor > abs_x;
     let hi = select(abs_x, abs_minor, y_major);
-    let up = select(1.0f, 1.2676506e30f, hi < 7.888609e-31f);
+    let up = select(1.0f, 1.2676506e30f, 7.888609e-31f > hi);
     let hi2 = hi * up;
     let t = select(abs_minor, abs_x, y_major) * up / select(1.0f, hi2, hi2 > 0.0f);
     let far = t > 0.41421357f;
@@ -84,8 +84,8 @@ fn unitpack_eqarea_concentric16_atan2_pi(minor: f32, x: f32) -> f32 {
     let r = z * ((t2 * z2 + (-0.33333334f)) * z2 + 1.0f);
     let r2 = select(r, r + 0.7853982f, far);
     let r3 = select(r2, 1.5707964f - r2, y_major);
-    let r4 = select(r3, 3.1415927f - r3, x < 0.0f);
-    return select(r4, -r4, minor < 0.0f) * 0.31830987f;
+    let r4 = select(r3, 3.1415927f - r3, 0.0f > x);
+    return select(r4, -r4, 0.0f > minor) * 0.31830987f;
 }
 
 // unitpack_eqarea_concentric16_encode_float: fast encoder, float form.
@@ -96,7 +96,7 @@ fn unitpack_eqarea_concentric16_atan2_pi(minor: f32, x: f32) -> f32 {
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 fn unitpack_eqarea_concentric16_encode_float(v: vec3<f32>) -> vec3<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -104,9 +104,9 @@ fn unitpack_eqarea_concentric16_encode_float(v: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let fixed_f = floor(abs(w2.x) * 2097152.0f);
     let fixed2 = u32(fixed_f);
@@ -148,7 +148,7 @@ fn unitpack_eqarea_concentric16_encode_float(v: vec3<f32>) -> vec3<f32> {
     let nudge2 = select(step_down2, 1.0f, root_m1 * root_m1 <= len2);
     let root_j = root_j0 + nudge2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
-    let one_if = select(0.0f, 1.0f, w2.z < 0.0f);
+    let one_if = select(0.0f, 1.0f, 0.0f > w2.z);
     let t1 = w2.xy * w2.xy;
     let rho = sqrt(t1.x + t1.y);
     let half_r = rho / sqrt(root * (root + abs(w2.z))) * 0.5f;
@@ -156,7 +156,7 @@ fn unitpack_eqarea_concentric16_encode_float(v: vec3<f32>) -> vec3<f32> {
     let major = select(w2.y, w2.x, t2);
     let minor = select(w2.x, w2.y, t2);
     let t = unitpack_eqarea_concentric16_atan2_pi(minor, abs(major));
-    let t3 = select(half_r, -half_r, major < 0.0f);
+    let t3 = select(half_r, -half_r, 0.0f > major);
     let t4 = half_r * t * 4.0f;
     let enc = select(vec2<f32>(t4, t3), vec2<f32>(t3, t4), t2) + 0.5f;
     return vec3<f32>(enc, one_if);
@@ -166,7 +166,7 @@ fn unitpack_eqarea_concentric16_encode_float(v: vec3<f32>) -> vec3<f32> {
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 fn unitpack_eqarea_concentric16_round_codes(v: vec3<f32>) -> vec3<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -174,9 +174,9 @@ fn unitpack_eqarea_concentric16_round_codes(v: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let fixed_f = floor(abs(w2.x) * 2097152.0f);
     let fixed2 = u32(fixed_f);
@@ -218,7 +218,7 @@ fn unitpack_eqarea_concentric16_round_codes(v: vec3<f32>) -> vec3<f32> {
     let nudge2 = select(step_down2, 1.0f, root_m1 * root_m1 <= len2);
     let root_j = root_j0 + nudge2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
-    let one_if = select(0.0f, 1.0f, w2.z < 0.0f);
+    let one_if = select(0.0f, 1.0f, 0.0f > w2.z);
     let fixed_f4 = floor(abs(w2.x) * 2097152.0f);
     let fixed5 = u32(fixed_f4);
     let fixed_f5 = floor(abs(w2.y) * 2097152.0f);
@@ -278,9 +278,9 @@ fn unitpack_eqarea_concentric16_round_codes(v: vec3<f32>) -> vec3<f32> {
     let h = round(r2 * 0.31830987f);
     let h2 = select(h, h + 2097152.0f, far);
     let h3 = select(h2, 4194304.0f - h2, y_major);
-    let h4 = select(h3, 8388608.0f - h3, abs_major < 0.0f);
-    let t11 = select(h4, -h4, minor < 0.0f);
-    let t12 = major < 0.0f;
+    let h4 = select(h3, 8388608.0f - h3, 0.0f > abs_major);
+    let t11 = select(h4, -h4, 0.0f > minor);
+    let t12 = 0.0f > major;
     let x = select(t11 * 6.0796738e-5f, select(127.5f, -127.5f, t12), t2);
     let t13 = round(r * x + 127.5f);
     let t14 = select(0.0f, t13, t13 >= 0.0f);
@@ -292,8 +292,8 @@ fn unitpack_eqarea_concentric16_round_codes(v: vec3<f32>) -> vec3<f32> {
     let one_if3 = select(0.0f, 1.0f, t16 <= t17);
     let up = select(
         0.0f,
-        select(select(0.0f, one_if3, t15 < 0.0f), select(1.0f, one_if2, t15 > 0.0f), x >= 0.0f),
-        estimate < 255.0f
+        select(select(0.0f, one_if3, 0.0f > t15), select(1.0f, one_if2, t15 > 0.0f), x >= 0.0f),
+        255.0f > estimate
     );
     let t18 = estimate - 1.0f - 127.0f;
     let t19 = rho2 * (x * x);
@@ -301,7 +301,7 @@ fn unitpack_eqarea_concentric16_round_codes(v: vec3<f32>) -> vec3<f32> {
     let one_if4 = select(0.0f, 1.0f, t19 >= t20);
     let one_if5 = select(0.0f, 1.0f, t19 <= t20);
     let t21 = select(
-        select(0.0f, one_if5, t18 < 0.0f),
+        select(0.0f, one_if5, 0.0f > t18),
         select(1.0f, one_if4, t18 > 0.0f),
         x >= 0.0f
     )
@@ -318,8 +318,8 @@ fn unitpack_eqarea_concentric16_round_codes(v: vec3<f32>) -> vec3<f32> {
     let one_if7 = select(0.0f, 1.0f, t25 <= t26);
     let up2 = select(
         0.0f,
-        select(select(0.0f, one_if7, t24 < 0.0f), select(1.0f, one_if6, t24 > 0.0f), x2 >= 0.0f),
-        estimate2 < 127.0f
+        select(select(0.0f, one_if7, 0.0f > t24), select(1.0f, one_if6, t24 > 0.0f), x2 >= 0.0f),
+        127.0f > estimate2
     );
     let t27 = estimate2 - 1.0f - 63.0f;
     let t28 = rho2 * (x2 * x2);
@@ -327,7 +327,7 @@ fn unitpack_eqarea_concentric16_round_codes(v: vec3<f32>) -> vec3<f32> {
     let one_if8 = select(0.0f, 1.0f, t28 >= t29);
     let one_if9 = select(0.0f, 1.0f, t28 <= t29);
     let t30 = select(
-        select(0.0f, one_if9, t27 < 0.0f),
+        select(0.0f, one_if9, 0.0f > t27),
         select(1.0f, one_if8, t27 > 0.0f),
         x2 >= 0.0f
     )

@@ -57,7 +57,7 @@ fn unitpack_eqarea_ellipse32_decode(code: u32) -> vec3<f32> {
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 fn unitpack_eqarea_ellipse32_encode_float(v: vec3<f32>) -> vec3<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -65,9 +65,9 @@ fn unitpack_eqarea_ellipse32_encode_float(v: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let fixed_f = floor(abs(w2.x) * 2097152.0f);
     let fixed2 = u32(fixed_f);
@@ -109,7 +109,7 @@ fn unitpack_eqarea_ellipse32_encode_float(v: vec3<f32>) -> vec3<f32> {
     let nudge2 = select(step_down2, 1.0f, root_m1 * root_m1 <= len2);
     let root_j = root_j0 + nudge2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
-    let one_if = select(0.0f, 1.0f, w2.z < 0.0f);
+    let one_if = select(0.0f, 1.0f, 0.0f > w2.z);
     let t1 = w2.xy * w2.xy;
     let rho = sqrt(t1.x + t1.y);
     let half_r = rho / sqrt(root * (root + abs(w2.z))) * 0.5f;
@@ -129,7 +129,7 @@ fn unitpack_eqarea_ellipse32_encode_float(v: vec3<f32>) -> vec3<f32> {
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 fn unitpack_eqarea_ellipse32_round_codes(v: vec3<f32>) -> vec3<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -137,9 +137,9 @@ fn unitpack_eqarea_ellipse32_round_codes(v: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let fixed_f = floor(abs(w2.x) * 2097152.0f);
     let fixed2 = u32(fixed_f);
@@ -193,8 +193,8 @@ fn unitpack_eqarea_ellipse32_round_codes(v: vec3<f32>) -> vec3<f32> {
     let ell_p = w2.x * w2.x * ell_g;
     let ell_q = w2.y * w2.y * ell_h;
     let exponent = bitcast<u32>(select(ell_q, ell_p, ell_p >= ell_q)) >> 23u;
-    let exponent2 = select(exponent, 40u, exponent < 40u);
-    let exponent3 = select(exponent2, 254u, 254u < exponent2);
+    let exponent2 = select(exponent, 40u, 40u > exponent);
+    let exponent3 = select(exponent2, 254u, exponent2 > 254u);
     let scale2 = bitcast<f32>((281u - exponent3) << 23u);
     let back = bitcast<f32>((exponent3 - 27u) << 23u);
     let ell_s = (floor(ell_p * scale2) + floor(ell_q * scale2)) * back;
@@ -215,8 +215,8 @@ fn unitpack_eqarea_ellipse32_round_codes(v: vec3<f32>) -> vec3<f32> {
     let ell_p2 = w2.x * w2.x * ell_g2;
     let ell_q2 = w2.y * w2.y * ell_h2;
     let exponent4 = bitcast<u32>(select(ell_q2, ell_p2, ell_p2 >= ell_q2)) >> 23u;
-    let exponent5 = select(exponent4, 40u, exponent4 < 40u);
-    let exponent6 = select(exponent5, 254u, 254u < exponent5);
+    let exponent5 = select(exponent4, 40u, 40u > exponent4);
+    let exponent6 = select(exponent5, 254u, exponent5 > 254u);
     let scale3 = bitcast<f32>((281u - exponent6) << 23u);
     let back2 = bitcast<f32>((exponent6 - 27u) << 23u);
     let ell_s2 = (floor(ell_p2 * scale3) + floor(ell_q2 * scale3)) * back2;
@@ -237,8 +237,8 @@ fn unitpack_eqarea_ellipse32_round_codes(v: vec3<f32>) -> vec3<f32> {
     let ell_p3 = w2.x * w2.x * ell_g3;
     let ell_q3 = w2.y * w2.y * ell_h3;
     let exponent7 = bitcast<u32>(select(ell_q3, ell_p3, ell_p3 >= ell_q3)) >> 23u;
-    let exponent8 = select(exponent7, 40u, exponent7 < 40u);
-    let exponent9 = select(exponent8, 254u, 254u < exponent8);
+    let exponent8 = select(exponent7, 40u, 40u > exponent7);
+    let exponent9 = select(exponent8, 254u, exponent8 > 254u);
     let scale4 = bitcast<f32>((281u - exponent9) << 23u);
     let back3 = bitcast<f32>((exponent9 - 27u) << 23u);
     let ell_s3 = (floor(ell_p3 * scale4) + floor(ell_q3 * scale4)) * back3;
@@ -259,8 +259,8 @@ fn unitpack_eqarea_ellipse32_round_codes(v: vec3<f32>) -> vec3<f32> {
     let ell_p4 = w2.x * w2.x * ell_g4;
     let ell_q4 = w2.y * w2.y * ell_h4;
     let exponent10 = bitcast<u32>(select(ell_q4, ell_p4, ell_p4 >= ell_q4)) >> 23u;
-    let exponent11 = select(exponent10, 40u, exponent10 < 40u);
-    let exponent12 = select(exponent11, 254u, 254u < exponent11);
+    let exponent11 = select(exponent10, 40u, 40u > exponent10);
+    let exponent12 = select(exponent11, 254u, exponent11 > 254u);
     let scale5 = bitcast<f32>((281u - exponent12) << 23u);
     let back4 = bitcast<f32>((exponent12 - 27u) << 23u);
     let ell_s4 = (floor(ell_p4 * scale5) + floor(ell_q4 * scale5)) * back4;
@@ -281,8 +281,8 @@ fn unitpack_eqarea_ellipse32_round_codes(v: vec3<f32>) -> vec3<f32> {
     let ell_p5 = w2.x * w2.x * ell_g5;
     let ell_q5 = w2.y * w2.y * ell_h5;
     let exponent13 = bitcast<u32>(select(ell_q5, ell_p5, ell_p5 >= ell_q5)) >> 23u;
-    let exponent14 = select(exponent13, 40u, exponent13 < 40u);
-    let exponent15 = select(exponent14, 254u, 254u < exponent14);
+    let exponent14 = select(exponent13, 40u, 40u > exponent13);
+    let exponent15 = select(exponent14, 254u, exponent14 > 254u);
     let scale6 = bitcast<f32>((281u - exponent15) << 23u);
     let back5 = bitcast<f32>((exponent15 - 27u) << 23u);
     let ell_s5 = (floor(ell_p5 * scale6) + floor(ell_q5 * scale6)) * back5;
@@ -303,8 +303,8 @@ fn unitpack_eqarea_ellipse32_round_codes(v: vec3<f32>) -> vec3<f32> {
     let ell_p6 = w2.x * w2.x * ell_g6;
     let ell_q6 = w2.y * w2.y * ell_h6;
     let exponent16 = bitcast<u32>(select(ell_q6, ell_p6, ell_p6 >= ell_q6)) >> 23u;
-    let exponent17 = select(exponent16, 40u, exponent16 < 40u);
-    let exponent18 = select(exponent17, 254u, 254u < exponent17);
+    let exponent17 = select(exponent16, 40u, 40u > exponent16);
+    let exponent18 = select(exponent17, 254u, exponent17 > 254u);
     let scale7 = bitcast<f32>((281u - exponent18) << 23u);
     let back6 = bitcast<f32>((exponent18 - 27u) << 23u);
     let ell_s6 = (floor(ell_p6 * scale7) + floor(ell_q6 * scale7)) * back6;
@@ -325,8 +325,8 @@ fn unitpack_eqarea_ellipse32_round_codes(v: vec3<f32>) -> vec3<f32> {
     let ell_p7 = w2.x * w2.x * ell_g7;
     let ell_q7 = w2.y * w2.y * ell_h7;
     let exponent19 = bitcast<u32>(select(ell_q7, ell_p7, ell_p7 >= ell_q7)) >> 23u;
-    let exponent20 = select(exponent19, 40u, exponent19 < 40u);
-    let exponent21 = select(exponent20, 254u, 254u < exponent20);
+    let exponent20 = select(exponent19, 40u, 40u > exponent19);
+    let exponent21 = select(exponent20, 254u, exponent20 > 254u);
     let scale8 = bitcast<f32>((281u - exponent21) << 23u);
     let back7 = bitcast<f32>((exponent21 - 27u) << 23u);
     let ell_s7 = (floor(ell_p7 * scale8) + floor(ell_q7 * scale8)) * back7;
@@ -347,8 +347,8 @@ fn unitpack_eqarea_ellipse32_round_codes(v: vec3<f32>) -> vec3<f32> {
     let ell_p8 = w2.x * w2.x * ell_g8;
     let ell_q8 = w2.y * w2.y * ell_h8;
     let exponent22 = bitcast<u32>(select(ell_q8, ell_p8, ell_p8 >= ell_q8)) >> 23u;
-    let exponent23 = select(exponent22, 40u, exponent22 < 40u);
-    let exponent24 = select(exponent23, 254u, 254u < exponent23);
+    let exponent23 = select(exponent22, 40u, 40u > exponent22);
+    let exponent24 = select(exponent23, 254u, exponent23 > 254u);
     let scale9 = bitcast<f32>((281u - exponent24) << 23u);
     let back8 = bitcast<f32>((exponent24 - 27u) << 23u);
     let ell_s8 = (floor(ell_p8 * scale9) + floor(ell_q8 * scale9)) * back8;
@@ -369,8 +369,8 @@ fn unitpack_eqarea_ellipse32_round_codes(v: vec3<f32>) -> vec3<f32> {
     let ell_p9 = w2.x * w2.x * ell_g9;
     let ell_q9 = w2.y * w2.y * ell_h9;
     let exponent25 = bitcast<u32>(select(ell_q9, ell_p9, ell_p9 >= ell_q9)) >> 23u;
-    let exponent26 = select(exponent25, 40u, exponent25 < 40u);
-    let exponent27 = select(exponent26, 254u, 254u < exponent26);
+    let exponent26 = select(exponent25, 40u, 40u > exponent25);
+    let exponent27 = select(exponent26, 254u, exponent26 > 254u);
     let scale10 = bitcast<f32>((281u - exponent27) << 23u);
     let back9 = bitcast<f32>((exponent27 - 27u) << 23u);
     let ell_s9 = (floor(ell_p9 * scale10) + floor(ell_q9 * scale10)) * back9;
@@ -391,8 +391,8 @@ fn unitpack_eqarea_ellipse32_round_codes(v: vec3<f32>) -> vec3<f32> {
     let ell_p10 = w2.x * w2.x * ell_g10;
     let ell_q10 = w2.y * w2.y * ell_h10;
     let exponent28 = bitcast<u32>(select(ell_q10, ell_p10, ell_p10 >= ell_q10)) >> 23u;
-    let exponent29 = select(exponent28, 40u, exponent28 < 40u);
-    let exponent30 = select(exponent29, 254u, 254u < exponent29);
+    let exponent29 = select(exponent28, 40u, 40u > exponent28);
+    let exponent30 = select(exponent29, 254u, exponent29 > 254u);
     let scale11 = bitcast<f32>((281u - exponent30) << 23u);
     let back10 = bitcast<f32>((exponent30 - 27u) << 23u);
     let ell_s10 = (floor(ell_p10 * scale11) + floor(ell_q10 * scale11)) * back10;
@@ -413,8 +413,8 @@ fn unitpack_eqarea_ellipse32_round_codes(v: vec3<f32>) -> vec3<f32> {
     let ell_p11 = w2.x * w2.x * ell_g11;
     let ell_q11 = w2.y * w2.y * ell_h11;
     let exponent31 = bitcast<u32>(select(ell_q11, ell_p11, ell_p11 >= ell_q11)) >> 23u;
-    let exponent32 = select(exponent31, 40u, exponent31 < 40u);
-    let exponent33 = select(exponent32, 254u, 254u < exponent32);
+    let exponent32 = select(exponent31, 40u, 40u > exponent31);
+    let exponent33 = select(exponent32, 254u, exponent32 > 254u);
     let scale12 = bitcast<f32>((281u - exponent33) << 23u);
     let back11 = bitcast<f32>((exponent33 - 27u) << 23u);
     let ell_s11 = (floor(ell_p11 * scale12) + floor(ell_q11 * scale12)) * back11;
@@ -435,8 +435,8 @@ fn unitpack_eqarea_ellipse32_round_codes(v: vec3<f32>) -> vec3<f32> {
     let ell_p12 = w2.x * w2.x * ell_g12;
     let ell_q12 = w2.y * w2.y * ell_h12;
     let exponent34 = bitcast<u32>(select(ell_q12, ell_p12, ell_p12 >= ell_q12)) >> 23u;
-    let exponent35 = select(exponent34, 40u, exponent34 < 40u);
-    let exponent36 = select(exponent35, 254u, 254u < exponent35);
+    let exponent35 = select(exponent34, 40u, 40u > exponent34);
+    let exponent36 = select(exponent35, 254u, exponent35 > 254u);
     let scale13 = bitcast<f32>((281u - exponent36) << 23u);
     let back12 = bitcast<f32>((exponent36 - 27u) << 23u);
     let ell_s12 = (floor(ell_p12 * scale13) + floor(ell_q12 * scale13)) * back12;
@@ -457,8 +457,8 @@ fn unitpack_eqarea_ellipse32_round_codes(v: vec3<f32>) -> vec3<f32> {
     let ell_p13 = w2.x * w2.x * ell_g13;
     let ell_q13 = w2.y * w2.y * ell_h13;
     let exponent37 = bitcast<u32>(select(ell_q13, ell_p13, ell_p13 >= ell_q13)) >> 23u;
-    let exponent38 = select(exponent37, 40u, exponent37 < 40u);
-    let exponent39 = select(exponent38, 254u, 254u < exponent38);
+    let exponent38 = select(exponent37, 40u, 40u > exponent37);
+    let exponent39 = select(exponent38, 254u, exponent38 > 254u);
     let scale14 = bitcast<f32>((281u - exponent39) << 23u);
     let back13 = bitcast<f32>((exponent39 - 27u) << 23u);
     let ell_s13 = (floor(ell_p13 * scale14) + floor(ell_q13 * scale14)) * back13;
@@ -479,8 +479,8 @@ fn unitpack_eqarea_ellipse32_round_codes(v: vec3<f32>) -> vec3<f32> {
     let ell_p14 = w2.x * w2.x * ell_g14;
     let ell_q14 = w2.y * w2.y * ell_h14;
     let exponent40 = bitcast<u32>(select(ell_q14, ell_p14, ell_p14 >= ell_q14)) >> 23u;
-    let exponent41 = select(exponent40, 40u, exponent40 < 40u);
-    let exponent42 = select(exponent41, 254u, 254u < exponent41);
+    let exponent41 = select(exponent40, 40u, 40u > exponent40);
+    let exponent42 = select(exponent41, 254u, exponent41 > 254u);
     let scale15 = bitcast<f32>((281u - exponent42) << 23u);
     let back14 = bitcast<f32>((exponent42 - 27u) << 23u);
     let ell_s14 = (floor(ell_p14 * scale15) + floor(ell_q14 * scale15)) * back14;
@@ -501,8 +501,8 @@ fn unitpack_eqarea_ellipse32_round_codes(v: vec3<f32>) -> vec3<f32> {
     let ell_p15 = w2.x * w2.x * ell_g15;
     let ell_q15 = w2.y * w2.y * ell_h15;
     let exponent43 = bitcast<u32>(select(ell_q15, ell_p15, ell_p15 >= ell_q15)) >> 23u;
-    let exponent44 = select(exponent43, 40u, exponent43 < 40u);
-    let exponent45 = select(exponent44, 254u, 254u < exponent44);
+    let exponent44 = select(exponent43, 40u, 40u > exponent43);
+    let exponent45 = select(exponent44, 254u, exponent44 > 254u);
     let scale16 = bitcast<f32>((281u - exponent45) << 23u);
     let back15 = bitcast<f32>((exponent45 - 27u) << 23u);
     let ell_s15 = (floor(ell_p15 * scale16) + floor(ell_q15 * scale16)) * back15;
@@ -524,8 +524,8 @@ fn unitpack_eqarea_ellipse32_round_codes(v: vec3<f32>) -> vec3<f32> {
     let ell_p16 = w2.y * w2.y * ell_g16;
     let ell_q16 = w2.x * w2.x * ell_h16;
     let exponent46 = bitcast<u32>(select(ell_q16, ell_p16, ell_p16 >= ell_q16)) >> 23u;
-    let exponent47 = select(exponent46, 40u, exponent46 < 40u);
-    let exponent48 = select(exponent47, 254u, 254u < exponent47);
+    let exponent47 = select(exponent46, 40u, 40u > exponent46);
+    let exponent48 = select(exponent47, 254u, exponent47 > 254u);
     let scale17 = bitcast<f32>((281u - exponent48) << 23u);
     let back16 = bitcast<f32>((exponent48 - 27u) << 23u);
     let ell_s16 = (floor(ell_p16 * scale17) + floor(ell_q16 * scale17)) * back16;
@@ -546,8 +546,8 @@ fn unitpack_eqarea_ellipse32_round_codes(v: vec3<f32>) -> vec3<f32> {
     let ell_p17 = w2.y * w2.y * ell_g17;
     let ell_q17 = w2.x * w2.x * ell_h17;
     let exponent49 = bitcast<u32>(select(ell_q17, ell_p17, ell_p17 >= ell_q17)) >> 23u;
-    let exponent50 = select(exponent49, 40u, exponent49 < 40u);
-    let exponent51 = select(exponent50, 254u, 254u < exponent50);
+    let exponent50 = select(exponent49, 40u, 40u > exponent49);
+    let exponent51 = select(exponent50, 254u, exponent50 > 254u);
     let scale18 = bitcast<f32>((281u - exponent51) << 23u);
     let back17 = bitcast<f32>((exponent51 - 27u) << 23u);
     let ell_s17 = (floor(ell_p17 * scale18) + floor(ell_q17 * scale18)) * back17;
@@ -568,8 +568,8 @@ fn unitpack_eqarea_ellipse32_round_codes(v: vec3<f32>) -> vec3<f32> {
     let ell_p18 = w2.y * w2.y * ell_g18;
     let ell_q18 = w2.x * w2.x * ell_h18;
     let exponent52 = bitcast<u32>(select(ell_q18, ell_p18, ell_p18 >= ell_q18)) >> 23u;
-    let exponent53 = select(exponent52, 40u, exponent52 < 40u);
-    let exponent54 = select(exponent53, 254u, 254u < exponent53);
+    let exponent53 = select(exponent52, 40u, 40u > exponent52);
+    let exponent54 = select(exponent53, 254u, exponent53 > 254u);
     let scale19 = bitcast<f32>((281u - exponent54) << 23u);
     let back18 = bitcast<f32>((exponent54 - 27u) << 23u);
     let ell_s18 = (floor(ell_p18 * scale19) + floor(ell_q18 * scale19)) * back18;
@@ -590,8 +590,8 @@ fn unitpack_eqarea_ellipse32_round_codes(v: vec3<f32>) -> vec3<f32> {
     let ell_p19 = w2.y * w2.y * ell_g19;
     let ell_q19 = w2.x * w2.x * ell_h19;
     let exponent55 = bitcast<u32>(select(ell_q19, ell_p19, ell_p19 >= ell_q19)) >> 23u;
-    let exponent56 = select(exponent55, 40u, exponent55 < 40u);
-    let exponent57 = select(exponent56, 254u, 254u < exponent56);
+    let exponent56 = select(exponent55, 40u, 40u > exponent55);
+    let exponent57 = select(exponent56, 254u, exponent56 > 254u);
     let scale20 = bitcast<f32>((281u - exponent57) << 23u);
     let back19 = bitcast<f32>((exponent57 - 27u) << 23u);
     let ell_s19 = (floor(ell_p19 * scale20) + floor(ell_q19 * scale20)) * back19;
@@ -612,8 +612,8 @@ fn unitpack_eqarea_ellipse32_round_codes(v: vec3<f32>) -> vec3<f32> {
     let ell_p20 = w2.y * w2.y * ell_g20;
     let ell_q20 = w2.x * w2.x * ell_h20;
     let exponent58 = bitcast<u32>(select(ell_q20, ell_p20, ell_p20 >= ell_q20)) >> 23u;
-    let exponent59 = select(exponent58, 40u, exponent58 < 40u);
-    let exponent60 = select(exponent59, 254u, 254u < exponent59);
+    let exponent59 = select(exponent58, 40u, 40u > exponent58);
+    let exponent60 = select(exponent59, 254u, exponent59 > 254u);
     let scale21 = bitcast<f32>((281u - exponent60) << 23u);
     let back20 = bitcast<f32>((exponent60 - 27u) << 23u);
     let ell_s20 = (floor(ell_p20 * scale21) + floor(ell_q20 * scale21)) * back20;
@@ -634,8 +634,8 @@ fn unitpack_eqarea_ellipse32_round_codes(v: vec3<f32>) -> vec3<f32> {
     let ell_p21 = w2.y * w2.y * ell_g21;
     let ell_q21 = w2.x * w2.x * ell_h21;
     let exponent61 = bitcast<u32>(select(ell_q21, ell_p21, ell_p21 >= ell_q21)) >> 23u;
-    let exponent62 = select(exponent61, 40u, exponent61 < 40u);
-    let exponent63 = select(exponent62, 254u, 254u < exponent62);
+    let exponent62 = select(exponent61, 40u, 40u > exponent61);
+    let exponent63 = select(exponent62, 254u, exponent62 > 254u);
     let scale22 = bitcast<f32>((281u - exponent63) << 23u);
     let back21 = bitcast<f32>((exponent63 - 27u) << 23u);
     let ell_s21 = (floor(ell_p21 * scale22) + floor(ell_q21 * scale22)) * back21;
@@ -656,8 +656,8 @@ fn unitpack_eqarea_ellipse32_round_codes(v: vec3<f32>) -> vec3<f32> {
     let ell_p22 = w2.y * w2.y * ell_g22;
     let ell_q22 = w2.x * w2.x * ell_h22;
     let exponent64 = bitcast<u32>(select(ell_q22, ell_p22, ell_p22 >= ell_q22)) >> 23u;
-    let exponent65 = select(exponent64, 40u, exponent64 < 40u);
-    let exponent66 = select(exponent65, 254u, 254u < exponent65);
+    let exponent65 = select(exponent64, 40u, 40u > exponent64);
+    let exponent66 = select(exponent65, 254u, exponent65 > 254u);
     let scale23 = bitcast<f32>((281u - exponent66) << 23u);
     let back22 = bitcast<f32>((exponent66 - 27u) << 23u);
     let ell_s22 = (floor(ell_p22 * scale23) + floor(ell_q22 * scale23)) * back22;
@@ -678,8 +678,8 @@ fn unitpack_eqarea_ellipse32_round_codes(v: vec3<f32>) -> vec3<f32> {
     let ell_p23 = w2.y * w2.y * ell_g23;
     let ell_q23 = w2.x * w2.x * ell_h23;
     let exponent67 = bitcast<u32>(select(ell_q23, ell_p23, ell_p23 >= ell_q23)) >> 23u;
-    let exponent68 = select(exponent67, 40u, exponent67 < 40u);
-    let exponent69 = select(exponent68, 254u, 254u < exponent68);
+    let exponent68 = select(exponent67, 40u, 40u > exponent67);
+    let exponent69 = select(exponent68, 254u, exponent68 > 254u);
     let scale24 = bitcast<f32>((281u - exponent69) << 23u);
     let back23 = bitcast<f32>((exponent69 - 27u) << 23u);
     let ell_s23 = (floor(ell_p23 * scale24) + floor(ell_q23 * scale24)) * back23;
@@ -700,8 +700,8 @@ fn unitpack_eqarea_ellipse32_round_codes(v: vec3<f32>) -> vec3<f32> {
     let ell_p24 = w2.y * w2.y * ell_g24;
     let ell_q24 = w2.x * w2.x * ell_h24;
     let exponent70 = bitcast<u32>(select(ell_q24, ell_p24, ell_p24 >= ell_q24)) >> 23u;
-    let exponent71 = select(exponent70, 40u, exponent70 < 40u);
-    let exponent72 = select(exponent71, 254u, 254u < exponent71);
+    let exponent71 = select(exponent70, 40u, 40u > exponent70);
+    let exponent72 = select(exponent71, 254u, exponent71 > 254u);
     let scale25 = bitcast<f32>((281u - exponent72) << 23u);
     let back24 = bitcast<f32>((exponent72 - 27u) << 23u);
     let ell_s24 = (floor(ell_p24 * scale25) + floor(ell_q24 * scale25)) * back24;
@@ -722,8 +722,8 @@ fn unitpack_eqarea_ellipse32_round_codes(v: vec3<f32>) -> vec3<f32> {
     let ell_p25 = w2.y * w2.y * ell_g25;
     let ell_q25 = w2.x * w2.x * ell_h25;
     let exponent73 = bitcast<u32>(select(ell_q25, ell_p25, ell_p25 >= ell_q25)) >> 23u;
-    let exponent74 = select(exponent73, 40u, exponent73 < 40u);
-    let exponent75 = select(exponent74, 254u, 254u < exponent74);
+    let exponent74 = select(exponent73, 40u, 40u > exponent73);
+    let exponent75 = select(exponent74, 254u, exponent74 > 254u);
     let scale26 = bitcast<f32>((281u - exponent75) << 23u);
     let back25 = bitcast<f32>((exponent75 - 27u) << 23u);
     let ell_s25 = (floor(ell_p25 * scale26) + floor(ell_q25 * scale26)) * back25;
@@ -744,8 +744,8 @@ fn unitpack_eqarea_ellipse32_round_codes(v: vec3<f32>) -> vec3<f32> {
     let ell_p26 = w2.y * w2.y * ell_g26;
     let ell_q26 = w2.x * w2.x * ell_h26;
     let exponent76 = bitcast<u32>(select(ell_q26, ell_p26, ell_p26 >= ell_q26)) >> 23u;
-    let exponent77 = select(exponent76, 40u, exponent76 < 40u);
-    let exponent78 = select(exponent77, 254u, 254u < exponent77);
+    let exponent77 = select(exponent76, 40u, 40u > exponent76);
+    let exponent78 = select(exponent77, 254u, exponent77 > 254u);
     let scale27 = bitcast<f32>((281u - exponent78) << 23u);
     let back26 = bitcast<f32>((exponent78 - 27u) << 23u);
     let ell_s26 = (floor(ell_p26 * scale27) + floor(ell_q26 * scale27)) * back26;
@@ -766,8 +766,8 @@ fn unitpack_eqarea_ellipse32_round_codes(v: vec3<f32>) -> vec3<f32> {
     let ell_p27 = w2.y * w2.y * ell_g27;
     let ell_q27 = w2.x * w2.x * ell_h27;
     let exponent79 = bitcast<u32>(select(ell_q27, ell_p27, ell_p27 >= ell_q27)) >> 23u;
-    let exponent80 = select(exponent79, 40u, exponent79 < 40u);
-    let exponent81 = select(exponent80, 254u, 254u < exponent80);
+    let exponent80 = select(exponent79, 40u, 40u > exponent79);
+    let exponent81 = select(exponent80, 254u, exponent80 > 254u);
     let scale28 = bitcast<f32>((281u - exponent81) << 23u);
     let back27 = bitcast<f32>((exponent81 - 27u) << 23u);
     let ell_s27 = (floor(ell_p27 * scale28) + floor(ell_q27 * scale28)) * back27;
@@ -788,8 +788,8 @@ fn unitpack_eqarea_ellipse32_round_codes(v: vec3<f32>) -> vec3<f32> {
     let ell_p28 = w2.y * w2.y * ell_g28;
     let ell_q28 = w2.x * w2.x * ell_h28;
     let exponent82 = bitcast<u32>(select(ell_q28, ell_p28, ell_p28 >= ell_q28)) >> 23u;
-    let exponent83 = select(exponent82, 40u, exponent82 < 40u);
-    let exponent84 = select(exponent83, 254u, 254u < exponent83);
+    let exponent83 = select(exponent82, 40u, 40u > exponent82);
+    let exponent84 = select(exponent83, 254u, exponent83 > 254u);
     let scale29 = bitcast<f32>((281u - exponent84) << 23u);
     let back28 = bitcast<f32>((exponent84 - 27u) << 23u);
     let ell_s28 = (floor(ell_p28 * scale29) + floor(ell_q28 * scale29)) * back28;
@@ -810,8 +810,8 @@ fn unitpack_eqarea_ellipse32_round_codes(v: vec3<f32>) -> vec3<f32> {
     let ell_p29 = w2.y * w2.y * ell_g29;
     let ell_q29 = w2.x * w2.x * ell_h29;
     let exponent85 = bitcast<u32>(select(ell_q29, ell_p29, ell_p29 >= ell_q29)) >> 23u;
-    let exponent86 = select(exponent85, 40u, exponent85 < 40u);
-    let exponent87 = select(exponent86, 254u, 254u < exponent86);
+    let exponent86 = select(exponent85, 40u, 40u > exponent85);
+    let exponent87 = select(exponent86, 254u, exponent86 > 254u);
     let scale30 = bitcast<f32>((281u - exponent87) << 23u);
     let back29 = bitcast<f32>((exponent87 - 27u) << 23u);
     let ell_s29 = (floor(ell_p29 * scale30) + floor(ell_q29 * scale30)) * back29;
@@ -825,7 +825,7 @@ fn unitpack_eqarea_ellipse32_round_codes(v: vec3<f32>) -> vec3<f32> {
     return select(
         vec3<f32>(lo18, lo31, 0.0f),
         vec3<f32>(mid15, mid29, 1.0f),
-        vec3<bool>(beyond15, beyond29, w2.z < 0.0f)
+        vec3<bool>(beyond15, beyond29, 0.0f > w2.z)
     );
 }
 

@@ -38,7 +38,7 @@ fn unitpack_eqarea_oct24_sincos_quarter_pi(x: f32) -> vec2<f32> {
 //   (unitpack verify --portable prints it).
 fn unitpack_eqarea_oct24_decode_float(params: vec2<f32>) -> vec3<f32> {
     let abs_params = abs(params);
-    let t1 = 1.0f - abs_params.x - abs_params.y < 0.0f;
+    let t1 = 0.0f > 1.0f - abs_params.x - abs_params.y;
     let b = select(abs_params, 1.0f - abs_params.yx, t1);
     let r = b.x + b.y;
     let angle = b / select(1.0f, r, r > 0.0f) * 0.5f;
@@ -72,7 +72,7 @@ fn unitpack_eqarea_oct24_atan2_pi(x: f32, x1: f32) -> f32 {
     let abs_x = abs(x);
     let y_major = abs_x > abs_x1;
     let hi = select(abs_x1, abs_x, y_major);
-    let up = select(1.0f, 1.2676506e30f, hi < 7.888609e-31f);
+    let up = select(1.0f, 1.2676506e30f, 7.888609e-31f > hi);
     let hi2 = hi * up;
     let t = select(abs_x, abs_x1, y_major) * up / select(1.0f, hi2, hi2 > 0.0f);
     let far = t > 0.41421357f;
@@ -83,8 +83,8 @@ fn unitpack_eqarea_oct24_atan2_pi(x: f32, x1: f32) -> f32 {
     let r = z * ((t2 * z2 + (-0.33333334f)) * z2 + 1.0f);
     let r2 = select(r, r + 0.7853982f, far);
     let r3 = select(r2, 1.5707964f - r2, y_major);
-    let r4 = select(r3, 3.1415927f - r3, x1 < 0.0f);
-    return select(r4, -r4, x < 0.0f) * 0.31830987f;
+    let r4 = select(r3, 3.1415927f - r3, 0.0f > x1);
+    return select(r4, -r4, 0.0f > x) * 0.31830987f;
 }
 
 // unitpack_eqarea_oct24_encode_float: fast encoder, float form.
@@ -94,7 +94,7 @@ fn unitpack_eqarea_oct24_atan2_pi(x: f32, x1: f32) -> f32 {
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 fn unitpack_eqarea_oct24_encode_float(v: vec3<f32>) -> vec2<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -102,9 +102,9 @@ fn unitpack_eqarea_oct24_encode_float(v: vec3<f32>) -> vec2<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let fixed_f = floor(abs(w2.x) * 2097152.0f);
     let fixed2 = u32(fixed_f);
@@ -162,7 +162,7 @@ fn unitpack_eqarea_oct24_encode_float(v: vec3<f32>) -> vec2<f32> {
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 fn unitpack_eqarea_oct24_round_codes(v: vec3<f32>) -> vec2<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -170,9 +170,9 @@ fn unitpack_eqarea_oct24_round_codes(v: vec3<f32>) -> vec2<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let fixed_f = floor(abs(w2.x) * 2097152.0f);
     let fixed2 = u32(fixed_f);
@@ -270,8 +270,8 @@ fn unitpack_eqarea_oct24_round_codes(v: vec3<f32>) -> vec2<f32> {
     let h = round(r2 * 0.31830987f);
     let h2 = select(h, h + 2097152.0f, far);
     let h3 = select(h2, 4194304.0f - h2, y_major);
-    let h4 = select(h3, 8388608.0f - h3, t2.x < 0.0f);
-    let t11 = select(h4, -h4, t2.y < 0.0f);
+    let h4 = select(h3, 8388608.0f - h3, 0.0f > t2.x);
+    let t11 = select(h4, -h4, 0.0f > t2.y);
     let mult = vec2<f32>(4194304.0f - t11, t11) * 0.00048804283f;
     let t12 = round(r * mult);
     let t13 = select(vec2<f32>(-2047.0f), t12, t12 >= vec2<f32>(-2047.0f));
@@ -283,7 +283,7 @@ fn unitpack_eqarea_oct24_round_codes(v: vec3<f32>) -> vec2<f32> {
         select(
             vec2<f32>(0.0f),
             select(vec2<f32>(0.0f), vec2<f32>(1.0f), t16 <= t17),
-            t15 < vec2<f32>(0.0f)
+            vec2<f32>(0.0f) > t15
         ),
         select(
             vec2<f32>(1.0f),
@@ -299,7 +299,7 @@ fn unitpack_eqarea_oct24_round_codes(v: vec3<f32>) -> vec2<f32> {
         select(
             vec2<f32>(0.0f),
             select(vec2<f32>(0.0f), vec2<f32>(1.0f), t20 <= t21),
-            t19 < vec2<f32>(0.0f)
+            vec2<f32>(0.0f) > t19
         ),
         select(
             vec2<f32>(1.0f),
@@ -309,11 +309,11 @@ fn unitpack_eqarea_oct24_round_codes(v: vec3<f32>) -> vec2<f32> {
         mult >= vec2<f32>(0.0f)
     );
     let c = t14
-        + select(vec2<f32>(0.0f), t18, t14 < vec2<f32>(2047.0f))
+        + select(vec2<f32>(0.0f), t18, vec2<f32>(2047.0f) > t14)
         + select(vec2<f32>(0.0f), t22 - 1.0f, t14 > vec2<f32>(-2047.0f));
     let folded = 2047.0f - c.yx;
     let t23 = select(c, folded, w2.z <= 0.0f);
-    return select(t23, -t23, w2.xy < vec2<f32>(0.0f));
+    return select(t23, -t23, vec2<f32>(0.0f) > w2.xy);
 }
 
 // unitpack_eqarea_oct24_encode: fast encoder.

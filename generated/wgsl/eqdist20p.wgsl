@@ -62,7 +62,7 @@ fn unitpack_eqdist20p_decode(code: u32) -> vec3<f32> {
 //   comparisons or rounded to a unit) is nearest the input's by exact squared distance, the first
 //   on ties.
 fn unitpack_eqdist20p_encode_codes(v: vec3<f32>) -> vec3<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -70,9 +70,9 @@ fn unitpack_eqdist20p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let fixed_f = floor(abs(w2.x) * 2097152.0f);
     let fixed2 = u32(fixed_f);
@@ -114,7 +114,7 @@ fn unitpack_eqdist20p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let nudge2 = select(step_down2, 1.0f, root_m1 * root_m1 <= len2);
     let root_j = root_j0 + nudge2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
-    let one_if = select(0.0f, 1.0f, w2.z < 0.0f);
+    let one_if = select(0.0f, 1.0f, 0.0f > w2.z);
     let fixed_f4 = floor(abs(w2.x) * 2097152.0f);
     let fixed5 = u32(fixed_f4);
     let fixed_f5 = floor(abs(w2.y) * 2097152.0f);
@@ -192,8 +192,8 @@ fn unitpack_eqdist20p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let h = round(r * 0.31830987f);
     let h2 = select(h, h + 2097152.0f, far);
     let h3 = select(h2, 4194304.0f - h2, y_major);
-    let h4 = select(h3, 8388608.0f - h3, abs_w2_z < 0.0f);
-    let t11 = select(h4, -h4, rho < 0.0f);
+    let h4 = select(h3, 8388608.0f - h3, 0.0f > abs_w2_z);
+    let t11 = select(h4, -h4, 0.0f > rho);
     let t12 = w2.xy * t11 * vec2<f32>(0.0001219511f, 6.0915947e-5f);
     let t13 = round(t12 / sqrt(vec2<f32>(rho2_2)) + vec2<f32>(511.5f, 255.5f));
     let t14 = select(vec2<f32>(0.0f), t13, t13 >= vec2<f32>(0.0f));
@@ -206,7 +206,7 @@ fn unitpack_eqdist20p_encode_codes(v: vec3<f32>) -> vec3<f32> {
         select(
             vec2<f32>(0.0f),
             select(vec2<f32>(0.0f), vec2<f32>(1.0f), abs_t12_sq <= t17),
-            t16 < vec2<f32>(0.0f)
+            vec2<f32>(0.0f) > t16
         ),
         select(
             vec2<f32>(1.0f),
@@ -222,7 +222,7 @@ fn unitpack_eqdist20p_encode_codes(v: vec3<f32>) -> vec3<f32> {
         select(
             vec2<f32>(0.0f),
             select(vec2<f32>(0.0f), vec2<f32>(1.0f), abs_t12_sq2 <= t20),
-            t19 < vec2<f32>(0.0f)
+            vec2<f32>(0.0f) > t19
         ),
         select(
             vec2<f32>(1.0f),
@@ -232,7 +232,7 @@ fn unitpack_eqdist20p_encode_codes(v: vec3<f32>) -> vec3<f32> {
         w2.xy >= vec2<f32>(0.0f)
     );
     let base = t15
-        + select(vec2<f32>(0.0f), t18, t15 < vec2<f32>(1023.0f, 511.0f))
+        + select(vec2<f32>(0.0f), t18, vec2<f32>(1023.0f, 511.0f) > t15)
         + select(vec2<f32>(0.0f), t21 - 1.0f, t15 > vec2<f32>(0.0f));
     let t22 = floor(w2 / root * 2097152.0f);
     let t23 = w2 * 2097152.0f;
@@ -316,7 +316,7 @@ fn unitpack_eqdist20p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let hi16 = hi15 + (lo15 >> 24u);
     let lo16 = lo15 & 0xffffffu;
     let dist2 = f32(hi16) * 16777216.0f + f32(lo16);
-    let t44 = s_up <= 1023.0f && base.y <= 511.0f && dist2 < dist;
+    let t44 = s_up <= 1023.0f && base.y <= 511.0f && dist > dist2;
     let best = select(cand, cand2, t44);
     let best_d = select(dist, dist2, t44);
     let t45 = vec2<f32>(base.x, t_up);
@@ -357,7 +357,7 @@ fn unitpack_eqdist20p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let hi20 = hi19 + (lo19 >> 24u);
     let lo20 = lo19 & 0xffffffu;
     let dist3 = f32(hi20) * 16777216.0f + f32(lo20);
-    let t55 = base.x <= 1023.0f && t_up <= 511.0f && dist3 < best_d;
+    let t55 = base.x <= 1023.0f && t_up <= 511.0f && best_d > dist3;
     let best2 = select(best, cand3, t55);
     let best_d2 = select(best_d, dist3, t55);
     let t56 = base + 1.0f;
@@ -398,7 +398,7 @@ fn unitpack_eqdist20p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let hi24 = hi23 + (lo23 >> 24u);
     let lo24 = lo23 & 0xffffffu;
     let dist4 = f32(hi24) * 16777216.0f + f32(lo24);
-    let best3 = select(best2, cand4, s_up <= 1023.0f && t_up <= 511.0f && dist4 < best_d2);
+    let best3 = select(best2, cand4, s_up <= 1023.0f && t_up <= 511.0f && best_d2 > dist4);
     return vec3<f32>(best3, one_if);
 }
 

@@ -62,7 +62,7 @@ fn unitpack_eqdist32_atan2_pi(rho: f32, x: f32) -> f32 {
     let abs_rho = abs(rho);
     let y_major = abs_rho > abs_x;
     let hi = select(abs_x, abs_rho, y_major);
-    let up = select(1.0f, 1.2676506e30f, hi < 7.888609e-31f);
+    let up = select(1.0f, 1.2676506e30f, 7.888609e-31f > hi);
     let hi2 = hi * up;
     let t = select(abs_rho, abs_x, y_major) * up / select(1.0f, hi2, hi2 > 0.0f);
     let far = t > 0.41421357f;
@@ -73,8 +73,8 @@ fn unitpack_eqdist32_atan2_pi(rho: f32, x: f32) -> f32 {
     let r = z * ((t2 * z2 + (-0.33333334f)) * z2 + 1.0f);
     let r2 = select(r, r + 0.7853982f, far);
     let r3 = select(r2, 1.5707964f - r2, y_major);
-    let r4 = select(r3, 3.1415927f - r3, x < 0.0f);
-    return select(r4, -r4, rho < 0.0f) * 0.31830987f;
+    let r4 = select(r3, 3.1415927f - r3, 0.0f > x);
+    return select(r4, -r4, 0.0f > rho) * 0.31830987f;
 }
 
 // unitpack_eqdist32_encode_float: fast encoder, float form.
@@ -85,7 +85,7 @@ fn unitpack_eqdist32_atan2_pi(rho: f32, x: f32) -> f32 {
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 fn unitpack_eqdist32_encode_float(v: vec3<f32>) -> vec3<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -93,11 +93,11 @@ fn unitpack_eqdist32_encode_float(v: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
-    let one_if = select(0.0f, 1.0f, w2.z < 0.0f);
+    let one_if = select(0.0f, 1.0f, 0.0f > w2.z);
     let t1 = w2.xy * w2.xy;
     let rho = sqrt(t1.x + t1.y);
     let t = unitpack_eqdist32_atan2_pi(rho, abs(w2.z));
@@ -110,7 +110,7 @@ fn unitpack_eqdist32_encode_float(v: vec3<f32>) -> vec3<f32> {
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 fn unitpack_eqdist32_round_codes(v: vec3<f32>) -> vec3<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -118,11 +118,11 @@ fn unitpack_eqdist32_round_codes(v: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
-    let one_if = select(0.0f, 1.0f, w2.z < 0.0f);
+    let one_if = select(0.0f, 1.0f, 0.0f > w2.z);
     let fixed_f = floor(abs(w2.x) * 2097152.0f);
     let fixed2 = u32(fixed_f);
     let fixed_f2 = floor(abs(w2.y) * 2097152.0f);
@@ -200,8 +200,8 @@ fn unitpack_eqdist32_round_codes(v: vec3<f32>) -> vec3<f32> {
     let h = round(r * 0.31830987f);
     let h2 = select(h, h + 2097152.0f, far);
     let h3 = select(h2, 4194304.0f - h2, y_major);
-    let h4 = select(h3, 8388608.0f - h3, abs_w2_z < 0.0f);
-    let t11 = select(h4, -h4, rho < 0.0f);
+    let h4 = select(h3, 8388608.0f - h3, 0.0f > abs_w2_z);
+    let t11 = select(h4, -h4, 0.0f > rho);
     let big3 = w2.x * t11 * 0.007812381f;
     let t12 = round(big3 / sqrt(rho2_2) + 32767.5f);
     let abs_big3 = abs(big3);
@@ -214,8 +214,8 @@ fn unitpack_eqdist32_round_codes(v: vec3<f32>) -> vec3<f32> {
     let one_if3 = select(0.0f, 1.0f, abs_big3_sq <= t15);
     let up = select(
         0.0f,
-        select(select(0.0f, one_if3, t14 < 0.0f), select(1.0f, one_if2, t14 > 0.0f), w2.x >= 0.0f),
-        estimate < 65535.0f
+        select(select(0.0f, one_if3, 0.0f > t14), select(1.0f, one_if2, t14 > 0.0f), w2.x >= 0.0f),
+        65535.0f > estimate
     );
     let t16 = estimate - 1.0f - 32767.0f;
     let abs_big3_sq2 = abs_big3 * abs_big3;
@@ -223,7 +223,7 @@ fn unitpack_eqdist32_round_codes(v: vec3<f32>) -> vec3<f32> {
     let one_if4 = select(0.0f, 1.0f, abs_big3_sq2 >= t17);
     let one_if5 = select(0.0f, 1.0f, abs_big3_sq2 <= t17);
     let t18 = select(
-        select(0.0f, one_if5, t16 < 0.0f),
+        select(0.0f, one_if5, 0.0f > t16),
         select(1.0f, one_if4, t16 > 0.0f),
         w2.x >= 0.0f
     )
@@ -241,8 +241,8 @@ fn unitpack_eqdist32_round_codes(v: vec3<f32>) -> vec3<f32> {
     let one_if7 = select(0.0f, 1.0f, abs_big4_sq <= t22);
     let up2 = select(
         0.0f,
-        select(select(0.0f, one_if7, t21 < 0.0f), select(1.0f, one_if6, t21 > 0.0f), w2.y >= 0.0f),
-        estimate2 < 32767.0f
+        select(select(0.0f, one_if7, 0.0f > t21), select(1.0f, one_if6, t21 > 0.0f), w2.y >= 0.0f),
+        32767.0f > estimate2
     );
     let t23 = estimate2 - 1.0f - 16383.0f;
     let abs_big4_sq2 = abs_big4 * abs_big4;
@@ -250,7 +250,7 @@ fn unitpack_eqdist32_round_codes(v: vec3<f32>) -> vec3<f32> {
     let one_if8 = select(0.0f, 1.0f, abs_big4_sq2 >= t24);
     let one_if9 = select(0.0f, 1.0f, abs_big4_sq2 <= t24);
     let t25 = select(
-        select(0.0f, one_if9, t23 < 0.0f),
+        select(0.0f, one_if9, 0.0f > t23),
         select(1.0f, one_if8, t23 > 0.0f),
         w2.y >= 0.0f
     )

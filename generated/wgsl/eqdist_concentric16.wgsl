@@ -79,7 +79,7 @@ fn unitpack_eqdist_concentric16_atan2_pi(rho: f32, x: f32) -> f32 {
     let abs_rho = abs(rho);
     let y_major = abs_rho > abs_x;
     let hi = select(abs_x, abs_rho, y_major);
-    let up = select(1.0f, 1.2676506e30f, hi < 7.888609e-31f);
+    let up = select(1.0f, 1.2676506e30f, 7.888609e-31f > hi);
     let hi2 = hi * up;
     let t = select(abs_rho, abs_x, y_major) * up / select(1.0f, hi2, hi2 > 0.0f);
     let far = t > 0.41421357f;
@@ -90,8 +90,8 @@ fn unitpack_eqdist_concentric16_atan2_pi(rho: f32, x: f32) -> f32 {
     let r = z * ((t2 * z2 + (-0.33333334f)) * z2 + 1.0f);
     let r2 = select(r, r + 0.7853982f, far);
     let r3 = select(r2, 1.5707964f - r2, y_major);
-    let r4 = select(r3, 3.1415927f - r3, x < 0.0f);
-    return select(r4, -r4, rho < 0.0f) * 0.31830987f;
+    let r4 = select(r3, 3.1415927f - r3, 0.0f > x);
+    return select(r4, -r4, 0.0f > rho) * 0.31830987f;
 }
 
 // unitpack_eqdist_concentric16_encode_float: fast encoder, float form.
@@ -102,7 +102,7 @@ fn unitpack_eqdist_concentric16_atan2_pi(rho: f32, x: f32) -> f32 {
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 fn unitpack_eqdist_concentric16_encode_float(v: vec3<f32>) -> vec3<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -110,11 +110,11 @@ fn unitpack_eqdist_concentric16_encode_float(v: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
-    let one_if = select(0.0f, 1.0f, w2.z < 0.0f);
+    let one_if = select(0.0f, 1.0f, 0.0f > w2.z);
     let t1 = w2.xy * w2.xy;
     let rho = sqrt(t1.x + t1.y);
     let half_r = unitpack_eqdist_concentric16_atan2_pi(rho, abs(w2.z));
@@ -122,7 +122,7 @@ fn unitpack_eqdist_concentric16_encode_float(v: vec3<f32>) -> vec3<f32> {
     let major = select(w2.y, w2.x, t2);
     let minor = select(w2.x, w2.y, t2);
     let t = unitpack_eqdist_concentric16_atan2_pi(minor, abs(major));
-    let t3 = select(half_r, -half_r, major < 0.0f);
+    let t3 = select(half_r, -half_r, 0.0f > major);
     let t4 = half_r * t * 4.0f;
     let enc = select(vec2<f32>(t4, t3), vec2<f32>(t3, t4), t2) + 0.5f;
     return vec3<f32>(enc, one_if);
@@ -132,7 +132,7 @@ fn unitpack_eqdist_concentric16_encode_float(v: vec3<f32>) -> vec3<f32> {
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 fn unitpack_eqdist_concentric16_round_codes(v: vec3<f32>) -> vec3<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -140,11 +140,11 @@ fn unitpack_eqdist_concentric16_round_codes(v: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
-    let one_if = select(0.0f, 1.0f, w2.z < 0.0f);
+    let one_if = select(0.0f, 1.0f, 0.0f > w2.z);
     let fixed_f = floor(abs(w2.x) * 2097152.0f);
     let fixed2 = u32(fixed_f);
     let fixed_f2 = floor(abs(w2.y) * 2097152.0f);
@@ -222,8 +222,8 @@ fn unitpack_eqdist_concentric16_round_codes(v: vec3<f32>) -> vec3<f32> {
     let h = round(r * 0.31830987f);
     let h2 = select(h, h + 2097152.0f, far);
     let h3 = select(h2, 4194304.0f - h2, y_major);
-    let h4 = select(h3, 8388608.0f - h3, abs_w2_z < 0.0f);
-    let t11 = select(h4, -h4, rho < 0.0f);
+    let h4 = select(h3, 8388608.0f - h3, 0.0f > abs_w2_z);
+    let t11 = select(h4, -h4, 0.0f > rho);
     let r2 = t11 * 2.3841858e-7f;
     let t12 = abs(w2.x) >= abs(w2.y);
     let major = select(w2.y, w2.x, t12);
@@ -268,15 +268,15 @@ fn unitpack_eqdist_concentric16_round_codes(v: vec3<f32>) -> vec3<f32> {
     let h5 = round(r3 * 0.31830987f);
     let h6 = select(h5, h5 + 2097152.0f, far2);
     let h7 = select(h6, 4194304.0f - h6, y_major2);
-    let h8 = select(h7, 8388608.0f - h7, abs_major < 0.0f);
-    let t22 = select(h8, -h8, minor < 0.0f);
-    let t23 = major < 0.0f;
+    let h8 = select(h7, 8388608.0f - h7, 0.0f > abs_major);
+    let t22 = select(h8, -h8, 0.0f > minor);
+    let t23 = 0.0f > major;
     let x = select(t22 * 6.0796738e-5f, select(127.5f, -127.5f, t23), t12);
     let t24 = round(r2 * x + 127.5f);
     let t25 = select(0.0f, t24, t24 >= 0.0f);
     let estimate = select(255.0f, t25, t25 <= 255.0f);
     let one_if2 = select(0.0f, 1.0f, t11 * x * 2.3841858e-7f >= estimate - 127.0f);
-    let up = select(0.0f, one_if2, estimate < 255.0f);
+    let up = select(0.0f, one_if2, 255.0f > estimate);
     let one_if3 = select(0.0f, 1.0f, t11 * x * 2.3841858e-7f >= estimate - 1.0f - 127.0f);
     let down = select(0.0f, one_if3 - 1.0f, estimate > 0.0f);
     let x2 = select(select(63.5f, -63.5f, t23), t22 * 3.027916e-5f, t12);
@@ -284,7 +284,7 @@ fn unitpack_eqdist_concentric16_round_codes(v: vec3<f32>) -> vec3<f32> {
     let t27 = select(0.0f, t26, t26 >= 0.0f);
     let estimate2 = select(127.0f, t27, t27 <= 127.0f);
     let one_if4 = select(0.0f, 1.0f, t11 * x2 * 2.3841858e-7f >= estimate2 - 63.0f);
-    let up2 = select(0.0f, one_if4, estimate2 < 127.0f);
+    let up2 = select(0.0f, one_if4, 127.0f > estimate2);
     let one_if5 = select(0.0f, 1.0f, t11 * x2 * 2.3841858e-7f >= estimate2 - 1.0f - 63.0f);
     let down2 = select(0.0f, one_if5 - 1.0f, estimate2 > 0.0f);
     return vec3<f32>(estimate + up + down, estimate2 + up2 + down2, one_if);

@@ -29,8 +29,8 @@
 //   verify --portable prints it).
 fn unitpack_float16x3_decode_float(params: vec3<f32>) -> vec3<f32> {
     let t1 = bitcast<vec3<u32>>(params) & vec3<u32>(0x7fffffffu);
-    let t2 = t1 < vec3<u32>(0x7f800000u);
-    let t3 = vec3<u32>(0u) < t1;
+    let t2 = vec3<u32>(0x7f800000u) > t1;
+    let t3 = t1 > vec3<u32>(0u);
     return select(
         vec3<f32>(0.0f, 0.0f, 1.0f),
         params,
@@ -48,8 +48,8 @@ fn unitpack_float16x3_decode(code: vec2<u32>) -> vec3<f32> {
     let t2 = code.x >> 16u;
     let t3 = code.y & 0xffffu;
     let t4 = vec3<u32>(t1, t2, t3) & vec3<u32>(0x7fffu);
-    let t5 = t4 < vec3<u32>(0x7c00u);
-    let t6 = t4 < vec3<u32>(0x400u);
+    let t5 = vec3<u32>(0x7c00u) > t4;
+    let t6 = vec3<u32>(0x400u) > t4;
     let t7 = bitcast<vec3<u32>>(vec3<f32>(t4) * 5.9604645e-8f);
     let t8 = vec3<u32>((t1 & 0x7fffu) << 13u, (t2 & 0x7fffu) << 13u, (t3 & 0x7fffu) << 13u);
     let t9 = t8 + 0x38000000u;
@@ -93,7 +93,7 @@ fn unitpack_float16x3_encode_float(v: vec3<f32>) -> vec3<f32> {
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 fn unitpack_float16x3_round_codes(v: vec3<f32>) -> vec3<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -101,9 +101,9 @@ fn unitpack_float16x3_round_codes(v: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let split_hi = bitcast<f32>(bitcast<u32>(w.x) & 0xfffff000u);
     let split_lo = w.x - split_hi;
     let split_hi2 = bitcast<f32>(bitcast<u32>(w.y) & 0xfffff000u);
@@ -121,8 +121,8 @@ fn unitpack_float16x3_round_codes(v: vec3<f32>) -> vec3<f32> {
     let abs_w_x = abs(w.x);
     let half_estimate = abs_w_x / sqrt(len2);
     let exponent = (bitcast<u32>(half_estimate) & 0x7fffffffu) >> 23u;
-    let exponent2 = select(exponent, 113u, exponent < 113u);
-    let exponent3 = select(exponent2, 126u, 126u < exponent2);
+    let exponent2 = select(exponent, 113u, 113u > exponent);
+    let exponent3 = select(exponent2, 126u, exponent2 > 126u);
     let t2 = (264u - exponent3) << 23u;
     let half_grid = bitcast<f32>(t2);
     let big = abs_w_x * half_grid;
@@ -130,14 +130,14 @@ fn unitpack_float16x3_round_codes(v: vec3<f32>) -> vec3<f32> {
     let half_code = round(half_estimate * half_grid);
     let upper = half_code + 0.5f;
     let lower = half_code - 0.5f;
-    let t3 = half_code > 0.0f && big2 < lower * lower * len2;
+    let t3 = half_code > 0.0f && lower * lower * len2 > big2;
     let step_down = select(0.0f, -1.0f, t3);
     let nudge = select(step_down, 1.0f, big2 >= upper * upper * len2);
     let abs_w_y = abs(w.y);
     let half_estimate2 = abs_w_y / sqrt(len2);
     let exponent4 = (bitcast<u32>(half_estimate2) & 0x7fffffffu) >> 23u;
-    let exponent5 = select(exponent4, 113u, exponent4 < 113u);
-    let exponent6 = select(exponent5, 126u, 126u < exponent5);
+    let exponent5 = select(exponent4, 113u, 113u > exponent4);
+    let exponent6 = select(exponent5, 126u, exponent5 > 126u);
     let t4 = (264u - exponent6) << 23u;
     let half_grid2 = bitcast<f32>(t4);
     let big3 = abs_w_y * half_grid2;
@@ -145,14 +145,14 @@ fn unitpack_float16x3_round_codes(v: vec3<f32>) -> vec3<f32> {
     let half_code2 = round(half_estimate2 * half_grid2);
     let upper2 = half_code2 + 0.5f;
     let lower2 = half_code2 - 0.5f;
-    let t5 = half_code2 > 0.0f && big2_2 < lower2 * lower2 * len2;
+    let t5 = half_code2 > 0.0f && lower2 * lower2 * len2 > big2_2;
     let step_down2 = select(0.0f, -1.0f, t5);
     let nudge2 = select(step_down2, 1.0f, big2_2 >= upper2 * upper2 * len2);
     let abs_w_z = abs(w.z);
     let half_estimate3 = abs_w_z / sqrt(len2);
     let exponent7 = (bitcast<u32>(half_estimate3) & 0x7fffffffu) >> 23u;
-    let exponent8 = select(exponent7, 113u, exponent7 < 113u);
-    let exponent9 = select(exponent8, 126u, 126u < exponent8);
+    let exponent8 = select(exponent7, 113u, 113u > exponent7);
+    let exponent9 = select(exponent8, 126u, exponent8 > 126u);
     let t6 = (264u - exponent9) << 23u;
     let half_grid3 = bitcast<f32>(t6);
     let big4 = abs_w_z * half_grid3;
@@ -160,13 +160,13 @@ fn unitpack_float16x3_round_codes(v: vec3<f32>) -> vec3<f32> {
     let half_code3 = round(half_estimate3 * half_grid3);
     let upper3 = half_code3 + 0.5f;
     let lower3 = half_code3 - 0.5f;
-    let t7 = half_code3 > 0.0f && big2_3 < lower3 * lower3 * len2;
+    let t7 = half_code3 > 0.0f && lower3 * lower3 * len2 > big2_3;
     let step_down3 = select(0.0f, -1.0f, t7);
     let nudge3 = select(step_down3, 1.0f, big2_3 >= upper3 * upper3 * len2);
     let t8 = vec3<bool>(
-        (w.x < 0.0f && half_code + nudge > 0.0f),
-        (w.y < 0.0f && half_code2 + nudge2 > 0.0f),
-        w.z < 0.0f && half_code3 + nudge3 > 0.0f
+        0.0f > w.x && half_code + nudge > 0.0f,
+        0.0f > w.y && half_code2 + nudge2 > 0.0f,
+        0.0f > w.z && half_code3 + nudge3 > 0.0f
     );
     let abs_w = abs(w);
     let t9 = bitcast<vec3<f32>>(vec3<u32>(t2, t4, t6));
@@ -197,34 +197,34 @@ fn unitpack_float16x3_encode(v: vec3<f32>) -> vec2<u32> {
     let round_codes = unitpack_float16x3_round_codes(v);
     let t1 = bitcast<u32>(round_codes.x);
     let t2 = t1 & 0x7fffffffu;
-    let t3 = t2 < 0x38800000u;
+    let t3 = 0x38800000u > t2;
     let t4 = select(
-        select(0x7c00u, 0x7e00u, 0x7f800000u < t2),
+        select(0x7c00u, 0x7e00u, t2 > 0x7f800000u),
         (t2 - 0x38000000u + 0xfffu + ((t2 >> 13u) & 1u)) >> 13u,
-        t2 < 0x477ff000u
+        0x477ff000u > t2
     );
     let t5 = select(t4, u32(round(bitcast<f32>(select(0u, t2, t3)) * 16777216.0f)), t3)
         | ((t1 >> 16u) & 0x8000u);
     let t6 = bitcast<u32>(round_codes.y);
     let t7 = t6 & 0x7fffffffu;
-    let t8 = t7 < 0x38800000u;
+    let t8 = 0x38800000u > t7;
     let t9 = select(
-        select(0x7c00u, 0x7e00u, 0x7f800000u < t7),
+        select(0x7c00u, 0x7e00u, t7 > 0x7f800000u),
         (t7 - 0x38000000u + 0xfffu + ((t7 >> 13u) & 1u)) >> 13u,
-        t7 < 0x477ff000u
+        0x477ff000u > t7
     );
     let t10 = select(t9, u32(round(bitcast<f32>(select(0u, t7, t8)) * 16777216.0f)), t8)
         | ((t6 >> 16u) & 0x8000u);
-    let t11 = select(t5, 0u, (t5 & 0x7fffu) < 1u) | (select(t10, 0u, (t10 & 0x7fffu) < 1u) << 16u);
+    let t11 = select(t5, 0u, 1u > (t5 & 0x7fffu)) | (select(t10, 0u, 1u > (t10 & 0x7fffu)) << 16u);
     let t12 = bitcast<u32>(round_codes.z);
     let t13 = t12 & 0x7fffffffu;
-    let t14 = t13 < 0x38800000u;
+    let t14 = 0x38800000u > t13;
     let t15 = select(
-        select(0x7c00u, 0x7e00u, 0x7f800000u < t13),
+        select(0x7c00u, 0x7e00u, t13 > 0x7f800000u),
         (t13 - 0x38000000u + 0xfffu + ((t13 >> 13u) & 1u)) >> 13u,
-        t13 < 0x477ff000u
+        0x477ff000u > t13
     );
     let t16 = select(t15, u32(round(bitcast<f32>(select(0u, t13, t14)) * 16777216.0f)), t14)
         | ((t12 >> 16u) & 0x8000u);
-    return vec2<u32>(t11, select(t16, 0u, (t16 & 0x7fffu) < 1u));
+    return vec2<u32>(t11, select(t16, 0u, 1u > (t16 & 0x7fffu)));
 }

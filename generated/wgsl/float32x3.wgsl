@@ -30,8 +30,8 @@
 //   code at 0·2^-24.
 fn unitpack_float32x3_decode_float(params: vec3<f32>) -> vec3<f32> {
     let t1 = bitcast<vec3<u32>>(params) & vec3<u32>(0x7fffffffu);
-    let t2 = t1 < vec3<u32>(0x7f800000u);
-    let t3 = vec3<u32>(0x7fffffu) < t1;
+    let t2 = vec3<u32>(0x7f800000u) > t1;
+    let t3 = t1 > vec3<u32>(0x7fffffu);
     return select(
         vec3<f32>(0.0f, 0.0f, 1.0f),
         select(vec3<f32>(0.0f), params, t3),
@@ -47,7 +47,7 @@ fn unitpack_float32x3_decode_float(params: vec3<f32>) -> vec3<f32> {
 //   every code, up to the sign of a zero: a bound of 0 proven by interval evaluation (unitpack
 //   verify --portable prints it).
 fn unitpack_float32x3_decode(code: vec3<u32>) -> vec3<f32> {
-    let t1 = (code & vec3<u32>(0x7f800000u)) < vec3<u32>(1u);
+    let t1 = vec3<u32>(1u) > (code & vec3<u32>(0x7f800000u));
     let params = bitcast<vec3<f32>>(
         vec3<u32>(
             select(code.x, (vec3<u32>(0u)).x, t1.x),
@@ -80,7 +80,7 @@ fn unitpack_float32x3_encode_float(v: vec3<f32>) -> vec3<f32> {
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 fn unitpack_float32x3_round_codes(v: vec3<f32>) -> vec3<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -88,9 +88,9 @@ fn unitpack_float32x3_round_codes(v: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let t1 = vec3<u32>(floor(abs(w2) * 2097152.0f));
     let limb1 = t1.x >> 12u;
@@ -131,15 +131,15 @@ fn unitpack_float32x3_round_codes(v: vec3<f32>) -> vec3<f32> {
     let wide = (hi4 << 24u) + lo4;
     let rest = wide - t3 * t3 + 0x40000000u;
     let n = select(
-        select(t3, t3 - 1u, rest < 0x40000000u - t3 + 1u),
+        select(t3, t3 - 1u, 0x40000000u - t3 + 1u > rest),
         t3 + 1u,
-        0x40000000u + t3 < rest
+        rest > 0x40000000u + t3
     );
     let rest2 = wide - n * n + 0x40000000u;
     let n2 = select(
-        select(n, n - 1u, rest2 < 0x40000000u - n + 1u),
+        select(n, n - 1u, 0x40000000u - n + 1u > rest2),
         n + 1u,
-        0x40000000u + n < rest2
+        rest2 > 0x40000000u + n
     );
     let nf = f32(n2);
     let k0 = u32(round(f32(t1.x) / nf * 16777216.0f));
@@ -152,7 +152,7 @@ fn unitpack_float32x3_round_codes(v: vec3<f32>) -> vec3<f32> {
     let t7 = (f32(t6) * 4096.0f + f32(t & 0xfffu)) / (nf * 2.0f);
     let q0 = u32(floor(t7));
     let rest3 = t - q0 * two_n;
-    let negative = !(rest3 < 0x80000000u);
+    let negative = !(0x80000000u > rest3);
     let k0_2 = u32(round(f32(t1.y) / nf * 16777216.0f));
     let r2 = (t1.y << 24u) - k0_2 * n2;
     let t8 = r2 << 1u;
@@ -163,7 +163,7 @@ fn unitpack_float32x3_round_codes(v: vec3<f32>) -> vec3<f32> {
     let t12 = (f32(t11) * 4096.0f + f32(t10 & 0xfffu)) / (nf * 2.0f);
     let q0_2 = u32(floor(t12));
     let rest4 = t10 - q0_2 * two_n2;
-    let negative2 = !(rest4 < 0x80000000u);
+    let negative2 = !(0x80000000u > rest4);
     let k0_3 = u32(round(f32(t1.z) / nf * 16777216.0f));
     let r3 = (t1.z << 24u) - k0_3 * n2;
     let t13 = r3 << 1u;
@@ -174,11 +174,11 @@ fn unitpack_float32x3_round_codes(v: vec3<f32>) -> vec3<f32> {
     let t17 = (f32(t16) * 4096.0f + f32(t15 & 0xfffu)) / (nf * 2.0f);
     let q0_3 = u32(floor(t17));
     let rest5 = t15 - q0_3 * two_n3;
-    let negative3 = !(rest5 < 0x80000000u);
+    let negative3 = !(0x80000000u > rest5);
     let t18 = vec3<bool>(
-        !(rest3 < two_n) && !negative,
-        !(rest4 < two_n2) && !negative2,
-        !(rest5 < two_n3) && !negative3
+        !(two_n > rest3) && !negative,
+        !(two_n2 > rest4) && !negative2,
+        !(two_n3 > rest5) && !negative3
     );
     let t19 = vec3<f32>(vec3<u32>(t6, t11, t16)) * 4096.0f
         + vec3<f32>((vec3<u32>(t4, t8, t13) + n2 + vec3<u32>(t5, t9, t14)) & vec3<u32>(0xfffu));
@@ -198,7 +198,7 @@ fn unitpack_float32x3_round_codes(v: vec3<f32>) -> vec3<f32> {
             select(t24.z, t21.z, t18.z)
         );
     let t26 = t25 - 8u;
-    let t27 = vec3<u32>(0x1000000u) < t26;
+    let t27 = t26 > vec3<u32>(0x1000000u);
     let t28 = vec3<f32>(
         vec3<u32>(
             select(t26.x, (vec3<u32>(0x1000000u)).x, t27.x),
@@ -207,7 +207,7 @@ fn unitpack_float32x3_round_codes(v: vec3<f32>) -> vec3<f32> {
         )
     )
         * 5.9604645e-8f;
-    return select(vec3<f32>(0.0f, 0.0f, 1.0f), select(t28, -t28, w2 < vec3<f32>(0.0f)), ok);
+    return select(vec3<f32>(0.0f, 0.0f, 1.0f), select(t28, -t28, vec3<f32>(0.0f) > w2), ok);
 }
 
 // unitpack_float32x3_encode: fast encoder.
@@ -218,7 +218,7 @@ fn unitpack_float32x3_round_codes(v: vec3<f32>) -> vec3<f32> {
 //   components count as zero.
 fn unitpack_float32x3_encode(v: vec3<f32>) -> vec3<u32> {
     let t1 = bitcast<vec3<u32>>(unitpack_float32x3_round_codes(v));
-    let t2 = (t1 & vec3<u32>(0x7f800000u)) < vec3<u32>(1u);
+    let t2 = vec3<u32>(1u) > (t1 & vec3<u32>(0x7f800000u));
     return vec3<u32>(
         select(t1.x, (vec3<u32>(0u)).x, t2.x),
         select(t1.y, (vec3<u32>(0u)).y, t2.y),

@@ -43,8 +43,8 @@ fn unitpack_godot_axis_angle_oct_to_vec3(e: vec2<f32>) -> vec3<f32> {
     let t2 = -(t1 - abs_e_y);
     let t = select(0.0f, t2, t2 >= 0.0f);
     let t3 = vec3<f32>(
-        t * select(select(0.0f, -1.0f, e.x < 0.0f), 1.0f, e.x > 0.0f),
-        t * select(select(0.0f, -1.0f, e.y < 0.0f), 1.0f, e.y > 0.0f),
+        t * select(select(0.0f, -1.0f, 0.0f > e.x), 1.0f, e.x > 0.0f),
+        t * select(select(0.0f, -1.0f, 0.0f > e.y), 1.0f, e.y > 0.0f),
         abs_e_y
     );
     let t4 = vec3<f32>(e, t1) - t3;
@@ -65,7 +65,7 @@ fn unitpack_godot_axis_angle_sincos_pi(turns: f32) -> vec2<f32> {
     let t2 = (((-0.02580689f * c2 + 0.23533063f) * c2 + (-1.3352628f)) * c2 + 4.058712f) * c2;
     let co = (t2 + (-4.934802f)) * c2 + 1.0f;
     let t3 = select(vec2<f32>(s, co), vec2<f32>(co, s), swap);
-    return select(t3, -t3, vec2<bool>((turns < 0.0f), back));
+    return select(t3, -t3, vec2<bool>(0.0f > turns, back));
 }
 
 // unitpack_godot_axis_angle_decode_float: decoder, float form.
@@ -169,14 +169,14 @@ fn unitpack_godot_axis_angle_fdlibm_acosf(c: f32) -> f32 {
     let t11 = z2 * (0.16666667f + z2 * (-0.32556581f + t9)) / (1.0f + t10) * sqrt_z2;
     let t12 = 2.0f * (t8 + (t11 + (z2 - t8 * t8) / (sqrt_z2 + t8)));
     let t13 = select(
-        select(t12, 3.1415925f - 2.0f * (sqrt_z + (t7 - 7.5497894e-8f)), c < 0.0f),
-        select(0.0f, 3.1415927f, c < 0.0f),
-        t1 < 0x3f800001u && !(t1 < 0x3f800000u)
+        select(t12, 3.1415925f - 2.0f * (sqrt_z + (t7 - 7.5497894e-8f)), 0.0f > c),
+        select(0.0f, 3.1415927f, 0.0f > c),
+        0x3f800001u > t1 && !(0x3f800000u > t1)
     );
     return select(
         t13,
-        select(1.5707963f - (c - (7.5497894e-8f - t4)), 1.5707964f, t1 < 0x23000001u),
-        t1 < 0x3f000000u
+        select(1.5707963f - (c - (7.5497894e-8f - t4)), 1.5707964f, 0x23000001u > t1),
+        0x3f000000u > t1
     );
 }
 
@@ -219,7 +219,7 @@ fn unitpack_godot_axis_angle_encode_float(n: vec3<f32>, t: vec4<f32>) -> vec3<f3
     let t14 = t13_sq.x + t13_sq.y + t13_sq.z;
     let n2_sq = n2 * n2;
     let t15 = n2 * (1.0f / sqrt(n2_sq.x + n2_sq.y + n2_sq.z));
-    let t16 = select(1.0f, -1.0f, t15.z < 0.0f);
+    let t16 = select(1.0f, -1.0f, 0.0f > t15.z);
     let t17 = -(1.0f / (t16 + t15.z));
     let t18 = t16 * t15.x;
     let t19 = vec3<f32>(1.0f + t18 * t15.x * t17, t18 * t15.y * t17, -t18);
@@ -233,12 +233,12 @@ fn unitpack_godot_axis_angle_encode_float(n: vec3<f32>, t: vec4<f32>) -> vec3<f3
     let t25 = t24_sq.x + t24_sq.y + t24_sq.z;
     let t26 = t25 == 0.0f;
     let b = select(t24 / sqrt(select(t25, 1.0f, t26)), vec3<f32>(0.0f), t26);
-    let t27 = abs(t23.y - b.x) < 1e-5f && abs(t23.z - n2.x) < 1e-5f;
-    let t28 = t27 && abs(b.z - n2.y) < 1e-5f;
-    let t29 = abs(t23.y) < 1e-5f && abs(t23.z) < 1e-5f && abs(b.x) < 1e-5f;
-    let t30 = t29 && abs(b.z) < 1e-5f && abs(n2.x) < 1e-5f && abs(n2.y) < 1e-5f;
+    let t27 = 1e-5f > abs(t23.y - b.x) && 1e-5f > abs(t23.z - n2.x);
+    let t28 = t27 && 1e-5f > abs(b.z - n2.y);
+    let t29 = 1e-5f > abs(t23.y) && 1e-5f > abs(t23.z) && 1e-5f > abs(b.x);
+    let t30 = t29 && 1e-5f > abs(b.z) && 1e-5f > abs(n2.x) && 1e-5f > abs(n2.y);
     let trace = t23.x + b.y + n2.z;
-    let t31 = t30 && abs(trace - 3.0f) < 3.0000001e-5f;
+    let t31 = t30 && 3.0000001e-5f > abs(trace - 3.0f);
     let t32 = (t23.x + 1.0f) * 0.5f;
     let t33 = (b.y + 1.0f) * 0.5f;
     let t34 = (n2.z + 1.0f) * 0.5f;
@@ -252,12 +252,12 @@ fn unitpack_godot_axis_angle_encode_float(n: vec3<f32>, t: vec4<f32>) -> vec3<f3
         select(
             vec3<f32>(t36 / sqrt_t34, t37 / sqrt_t34, sqrt_t34),
             vec3<f32>(0.70710677f, 0.70710677f, 0.0f),
-            t34 < 1.0000001e-5f
+            1.0000001e-5f > t34
         ),
         select(
             vec3<f32>(t35 / sqrt_t33, sqrt_t33, t37 / sqrt_t33),
             vec3<f32>(0.70710677f, 0.0f, 0.70710677f),
-            t33 < 1.0000001e-5f
+            1.0000001e-5f > t33
         ),
         t33 > t34
     );
@@ -266,7 +266,7 @@ fn unitpack_godot_axis_angle_encode_float(n: vec3<f32>, t: vec4<f32>) -> vec3<f3
         select(
             vec3<f32>(sqrt_t32, t35 / sqrt_t32, t36 / sqrt_t32),
             vec3<f32>(0.0f, 0.70710677f, 0.70710677f),
-            t32 < 1.0000001e-5f
+            1.0000001e-5f > t32
         ),
         t32 > t33 && t32 > t34
     );
@@ -275,7 +275,7 @@ fn unitpack_godot_axis_angle_encode_float(n: vec3<f32>, t: vec4<f32>) -> vec3<f3
     let t41 = sqrt(t40_sq.x + t40_sq.y + t40_sq.z);
     let t42 = (trace - 1.0f) * 0.5f;
     let axis = select(
-        t40 / select(t41, 1.0f, t41 < 1.0000001e-5f),
+        t40 / select(t41, 1.0f, 1.0000001e-5f > t41),
         select(t39, vec3<f32>(0.0f, 1.0f, 0.0f), t31),
         t28
     );
@@ -283,18 +283,18 @@ fn unitpack_godot_axis_angle_encode_float(n: vec3<f32>, t: vec4<f32>) -> vec3<f3
         select(
             select(unitpack_godot_axis_angle_fdlibm_acosf(t42), 0.0f, t42 > 1.0f),
             3.1415927f,
-            t42 < (-1.0f)
+            -1.0f > t42
         ),
         select(3.1415927f, 0.0f, t31),
         t28
     );
-    let t43 = select(1.0f, -1.0f, t.w < 0.0f) < 0.0f;
+    let t43 = 0.0f > select(1.0f, -1.0f, 0.0f > t.w);
     let theta_hi = bitcast<f32>(bitcast<u32>(angle) & 0xfffff000u);
     let theta_lo = angle - theta_hi;
     let t44 = select(1.0f, -1.0f, t43);
     let estimate = 0.5f + angle * 0.15915494f * t44;
     let exponent = (bitcast<u32>(estimate) & 0x7fffffffu) >> 23u;
-    let exponent2 = select(exponent, 40u, exponent < 40u);
+    let exponent2 = select(exponent, 40u, 40u > exponent);
     let grid = bitcast<f32>((exponent2 - 23u) << 23u);
     let inv_grid = bitcast<f32>((277u - exponent2) << 23u);
     let scale = inv_grid * t44;
@@ -313,7 +313,7 @@ fn unitpack_godot_axis_angle_encode_float(n: vec3<f32>, t: vec4<f32>) -> vec3<f3
         + u32(floor((term2 - whole2) * 16777216.0f));
     let abs_whole2 = abs(whole2);
     let t47 = u32(abs_whole2 - floor(abs_whole2 * 2.3283064e-10f) * 4294967300.0f);
-    let t48 = 0u + select(t45, 0u - t45, whole < 0.0f) + select(t47, 0u - t47, whole2 < 0.0f);
+    let t48 = 0u + select(t45, 0u - t45, 0.0f > whole) + select(t47, 0u - t47, 0.0f > whole2);
     let whole3 = floor(term3);
     let abs_whole3 = abs(whole3);
     let t49 = u32(abs_whole3 - floor(abs_whole3 * 2.3283064e-10f) * 4294967300.0f);
@@ -323,7 +323,7 @@ fn unitpack_godot_axis_angle_encode_float(n: vec3<f32>, t: vec4<f32>) -> vec3<f3
         + u32(floor((term4 - whole4) * 16777216.0f));
     let abs_whole4 = abs(whole4);
     let t51 = u32(abs_whole4 - floor(abs_whole4 * 2.3283064e-10f) * 4294967300.0f);
-    let t52 = t48 + select(t49, 0u - t49, whole3 < 0.0f) + select(t51, 0u - t51, whole4 < 0.0f);
+    let t52 = t48 + select(t49, 0u - t49, 0.0f > whole3) + select(t51, 0u - t51, 0.0f > whole4);
     let whole5 = floor(term5);
     let abs_whole5 = abs(whole5);
     let t53 = u32(abs_whole5 - floor(abs_whole5 * 2.3283064e-10f) * 4294967300.0f);
@@ -333,9 +333,9 @@ fn unitpack_godot_axis_angle_encode_float(n: vec3<f32>, t: vec4<f32>) -> vec3<f3
         + u32(floor((term6 - whole6) * 16777216.0f));
     let abs_whole6 = abs(whole6);
     let t55 = u32(abs_whole6 - floor(abs_whole6 * 2.3283064e-10f) * 4294967300.0f);
-    let t56 = t52 + select(t53, 0u - t53, whole5 < 0.0f) + select(t55, 0u - t55, whole6 < 0.0f);
+    let t56 = t52 + select(t53, 0u - t53, 0.0f > whole5) + select(t55, 0u - t55, 0.0f > whole6);
     let r = t56 + ((t54 + 0x800000u) >> 24u);
-    let v = select(0.0f, f32(select(r, 0x1000000u, 0x1000000u < r)) * grid, estimate > 0.0f);
+    let v = select(0.0f, f32(select(r, 0x1000000u, r > 0x1000000u)) * grid, estimate > 0.0f);
     let t57 = select(0.0f, v, v >= 0.0f);
     let t58 = select(0.500008f, v, v >= 0.500008f);
     let t59 = axis / (abs(axis.x) + abs(axis.y) + abs(axis.z));

@@ -52,7 +52,7 @@ fn unitpack_hemioct16_ieee_decode(code: u32) -> vec3<f32> {
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 fn unitpack_hemioct16_ieee_encode_float(v: vec3<f32>) -> vec2<f32> {
-    let t1 = abs(vec3<f32>(v.xy, select(v.z, 0.0f, v.z < 0.0f)));
+    let t1 = abs(vec3<f32>(v.xy, select(v.z, 0.0f, 0.0f > v.z)));
     let l1 = t1.x + t1.y + t1.z;
     let p = v.xy / l1;
     return select(

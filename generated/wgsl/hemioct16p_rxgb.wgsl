@@ -51,7 +51,7 @@ fn unitpack_hemioct16p_rxgb_decode(code: u32) -> vec3<f32> {
 //   angle, measured against the input's fixed-point magnitudes (the first on ties); then the
 //   input's signs.
 fn unitpack_hemioct16p_rxgb_encode_codes(v: vec3<f32>) -> vec4<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -59,9 +59,9 @@ fn unitpack_hemioct16p_rxgb_encode_codes(v: vec3<f32>) -> vec4<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let t1 = abs(vec3<f32>(w.xy, select(0.0f, w.z, w.z > 0.0f)));
     let sum2 = t1.x + t1.y + t1.z;
     let t2 = ok && sum2 > 0.0f;
@@ -72,7 +72,7 @@ fn unitpack_hemioct16p_rxgb_encode_codes(v: vec3<f32>) -> vec4<f32> {
     let t4 = round(t / l1 + 127.5f);
     let t5 = select(0.0f, t4, t4 >= 0.0f);
     let estimate = select(255.0f, t5, t5 <= 255.0f);
-    let t6 = estimate < 255.0f;
+    let t6 = 255.0f > estimate;
     let one_if = select(0.0f, 1.0f, t >= (estimate - 126.5f) * l1);
     let up = select(0.0f, one_if, t6);
     let t7 = estimate > 0.0f;
@@ -86,7 +86,7 @@ fn unitpack_hemioct16p_rxgb_encode_codes(v: vec3<f32>) -> vec4<f32> {
     let t12 = round(t11 / l1 + 127.5f);
     let t13 = select(0.0f, t12, t12 >= 0.0f);
     let estimate2 = select(255.0f, t13, t13 <= 255.0f);
-    let t14 = estimate2 < 255.0f;
+    let t14 = 255.0f > estimate2;
     let one_if3 = select(0.0f, 1.0f, t11 >= (estimate2 - 126.5f) * l1);
     let up2 = select(0.0f, one_if3, t14);
     let t15 = estimate2 > 0.0f;
@@ -104,7 +104,7 @@ fn unitpack_hemioct16p_rxgb_encode_codes(v: vec3<f32>) -> vec4<f32> {
         + select(
             vec2<f32>(0.0f),
             select(vec2<f32>(0.0f), vec2<f32>(1.0f), t18 >= (t21 - 126.5f) * l1),
-            t21 < vec2<f32>(255.0f)
+            vec2<f32>(255.0f) > t21
         );
     let t23 = select(
         vec2<f32>(0.0f),
@@ -120,7 +120,7 @@ fn unitpack_hemioct16p_rxgb_encode_codes(v: vec3<f32>) -> vec4<f32> {
         + select(
             vec2<f32>(0.0f),
             select(vec2<f32>(0.0f), vec2<f32>(1.0f), t25 >= (t28 - 126.5f) * l1),
-            t28 < vec2<f32>(255.0f)
+            vec2<f32>(255.0f) > t28
         );
     let t30 = select(
         vec2<f32>(0.0f),
@@ -131,9 +131,9 @@ fn unitpack_hemioct16p_rxgb_encode_codes(v: vec3<f32>) -> vec4<f32> {
     let t32 = select(
         t31 + t31 - 255.0f,
         -(t24 + t24 - 255.0f),
-        s0 + s0 - 255.0f + (t0 + t0 - 255.0f) < 0.0f
+        0.0f > s0 + s0 - 255.0f + (t0 + t0 - 255.0f)
     );
-    let cand = select(t32, t32.yx, t32.x < t32.y);
+    let cand = select(t32, t32.yx, t32.y > t32.x);
     let t33 = 510.0f - cand.x - cand.x;
     let t34 = select(0.0f, t33, t33 >= 0.0f);
     let t35 = cand.x + cand.y;
@@ -143,11 +143,11 @@ fn unitpack_hemioct16p_rxgb_encode_codes(v: vec3<f32>) -> vec4<f32> {
     let t34_u = u32(t34);
     let axd = afix.yzx * vec3<u32>(vec3<f32>(t34, t35, t36))
         - afix.zxy * vec3<u32>(vec3<f32>(t36, t34, t35));
-    let t37 = select(0u - axd.x, axd.x, axd.x < 0x80000000u);
+    let t37 = select(0u - axd.x, axd.x, 0x80000000u > axd.x);
     let t38 = t37 >> 16u;
-    let t39 = select(0u - axd.y, axd.y, axd.y < 0x80000000u);
+    let t39 = select(0u - axd.y, axd.y, 0x80000000u > axd.y);
     let t40 = t39 >> 16u;
-    let t41 = select(0u - axd.z, axd.z, axd.z < 0x80000000u);
+    let t41 = select(0u - axd.z, axd.z, 0x80000000u > axd.z);
     let t42 = t41 >> 16u;
     let t43 = vec3<u32>((t38 * t38) << 3u, (t40 * t40) << 3u, (t42 * t42) << 3u);
     let t44 = vec3<u32>(
@@ -169,9 +169,9 @@ fn unitpack_hemioct16p_rxgb_encode_codes(v: vec3<f32>) -> vec4<f32> {
     let t48 = select(
         t47 + t47 - 255.0f,
         -(t46 + t46 - 255.0f),
-        s_up + s_up - 255.0f + (t0 + t0 - 255.0f) < 0.0f
+        0.0f > s_up + s_up - 255.0f + (t0 + t0 - 255.0f)
     );
-    let cand2 = select(t48, t48.yx, t48.x < t48.y);
+    let cand2 = select(t48, t48.yx, t48.y > t48.x);
     let t49 = 510.0f - cand2.x - cand2.x;
     let t50 = select(0.0f, t49, t49 >= 0.0f);
     let t51 = cand2.x + cand2.y;
@@ -181,11 +181,11 @@ fn unitpack_hemioct16p_rxgb_encode_codes(v: vec3<f32>) -> vec4<f32> {
     let t50_u = u32(t50);
     let axd2 = afix.yzx * vec3<u32>(vec3<f32>(t50, t51, t52))
         - afix.zxy * vec3<u32>(vec3<f32>(t52, t50, t51));
-    let t53 = select(0u - axd2.x, axd2.x, axd2.x < 0x80000000u);
+    let t53 = select(0u - axd2.x, axd2.x, 0x80000000u > axd2.x);
     let t54 = t53 >> 16u;
-    let t55 = select(0u - axd2.y, axd2.y, axd2.y < 0x80000000u);
+    let t55 = select(0u - axd2.y, axd2.y, 0x80000000u > axd2.y);
     let t56 = t55 >> 16u;
-    let t57 = select(0u - axd2.z, axd2.z, axd2.z < 0x80000000u);
+    let t57 = select(0u - axd2.z, axd2.z, 0x80000000u > axd2.z);
     let t58 = t57 >> 16u;
     let t59 = vec3<u32>((t54 * t54) << 3u, (t56 * t56) << 3u, (t58 * t58) << 3u);
     let t60 = vec3<u32>(
@@ -196,7 +196,7 @@ fn unitpack_hemioct16p_rxgb_encode_codes(v: vec3<f32>) -> vec4<f32> {
     let t61 = t59 + t60;
     let e2 = f32(t61.x + t61.y + t61.z);
     let n2 = f32(t51_u * t51_u + t52_u * t52_u + t50_u * t50_u);
-    let t62 = cand2.x <= 255.0f && e2 * n < e * n2;
+    let t62 = cand2.x <= 255.0f && e * n2 > e2 * n;
     let best = select(cand, cand2, t62);
     let best_e = select(e, e2, t62);
     let best_n = select(n, n2, t62);
@@ -209,9 +209,9 @@ fn unitpack_hemioct16p_rxgb_encode_codes(v: vec3<f32>) -> vec4<f32> {
     let t65 = select(
         t64 + t64 - 255.0f,
         -(t63 + t63 - 255.0f),
-        s0 + s0 - 255.0f + (t_up + t_up - 255.0f) < 0.0f
+        0.0f > s0 + s0 - 255.0f + (t_up + t_up - 255.0f)
     );
-    let cand3 = select(t65, t65.yx, t65.x < t65.y);
+    let cand3 = select(t65, t65.yx, t65.y > t65.x);
     let t66 = 510.0f - cand3.x - cand3.x;
     let t67 = select(0.0f, t66, t66 >= 0.0f);
     let t68 = cand3.x + cand3.y;
@@ -221,11 +221,11 @@ fn unitpack_hemioct16p_rxgb_encode_codes(v: vec3<f32>) -> vec4<f32> {
     let t67_u = u32(t67);
     let axd3 = afix.yzx * vec3<u32>(vec3<f32>(t67, t68, t69))
         - afix.zxy * vec3<u32>(vec3<f32>(t69, t67, t68));
-    let t70 = select(0u - axd3.x, axd3.x, axd3.x < 0x80000000u);
+    let t70 = select(0u - axd3.x, axd3.x, 0x80000000u > axd3.x);
     let t71 = t70 >> 16u;
-    let t72 = select(0u - axd3.y, axd3.y, axd3.y < 0x80000000u);
+    let t72 = select(0u - axd3.y, axd3.y, 0x80000000u > axd3.y);
     let t73 = t72 >> 16u;
-    let t74 = select(0u - axd3.z, axd3.z, axd3.z < 0x80000000u);
+    let t74 = select(0u - axd3.z, axd3.z, 0x80000000u > axd3.z);
     let t75 = t74 >> 16u;
     let t76 = vec3<u32>((t71 * t71) << 3u, (t73 * t73) << 3u, (t75 * t75) << 3u);
     let t77 = vec3<u32>(
@@ -236,7 +236,7 @@ fn unitpack_hemioct16p_rxgb_encode_codes(v: vec3<f32>) -> vec4<f32> {
     let t78 = t76 + t77;
     let e3 = f32(t78.x + t78.y + t78.z);
     let n3 = f32(t68_u * t68_u + t69_u * t69_u + t67_u * t67_u);
-    let t79 = cand3.x <= 255.0f && e3 * best_n < best_e * n3;
+    let t79 = cand3.x <= 255.0f && best_e * n3 > e3 * best_n;
     let best2 = select(best, cand3, t79);
     let best_e2 = select(best_e, e3, t79);
     let best_n2 = select(best_n, n3, t79);
@@ -245,9 +245,9 @@ fn unitpack_hemioct16p_rxgb_encode_codes(v: vec3<f32>) -> vec4<f32> {
     let t82 = select(
         t81 + t81 - 255.0f,
         -(t80 + t80 - 255.0f),
-        s_up + s_up - 255.0f + (t_up + t_up - 255.0f) < 0.0f
+        0.0f > s_up + s_up - 255.0f + (t_up + t_up - 255.0f)
     );
-    let cand4 = select(t82, t82.yx, t82.x < t82.y);
+    let cand4 = select(t82, t82.yx, t82.y > t82.x);
     let t83 = 510.0f - cand4.x - cand4.x;
     let t84 = select(0.0f, t83, t83 >= 0.0f);
     let t85 = cand4.x + cand4.y;
@@ -257,11 +257,11 @@ fn unitpack_hemioct16p_rxgb_encode_codes(v: vec3<f32>) -> vec4<f32> {
     let t84_u = u32(t84);
     let axd4 = afix.yzx * vec3<u32>(vec3<f32>(t84, t85, t86))
         - afix.zxy * vec3<u32>(vec3<f32>(t86, t84, t85));
-    let t87 = select(0u - axd4.x, axd4.x, axd4.x < 0x80000000u);
+    let t87 = select(0u - axd4.x, axd4.x, 0x80000000u > axd4.x);
     let t88 = t87 >> 16u;
-    let t89 = select(0u - axd4.y, axd4.y, axd4.y < 0x80000000u);
+    let t89 = select(0u - axd4.y, axd4.y, 0x80000000u > axd4.y);
     let t90 = t89 >> 16u;
-    let t91 = select(0u - axd4.z, axd4.z, axd4.z < 0x80000000u);
+    let t91 = select(0u - axd4.z, axd4.z, 0x80000000u > axd4.z);
     let t92 = t91 >> 16u;
     let t93 = vec3<u32>((t88 * t88) << 3u, (t90 * t90) << 3u, (t92 * t92) << 3u);
     let t94 = vec3<u32>(
@@ -272,10 +272,10 @@ fn unitpack_hemioct16p_rxgb_encode_codes(v: vec3<f32>) -> vec4<f32> {
     let t95 = t93 + t94;
     let e4 = f32(t95.x + t95.y + t95.z);
     let n4 = f32(t85_u * t85_u + t86_u * t86_u + t84_u * t84_u);
-    let best3 = select(best2, cand4, cand4.x <= 255.0f && e4 * best_n2 < best_e2 * n4);
-    let t96 = select(best3, -best3.yx, w.x < 0.0f);
-    let c = select(vec2<f32>(128.0f), (select(t96, t96.yx, w.y < 0.0f) + 255.0f) * 0.5f, t2);
-    let normal2 = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let best3 = select(best2, cand4, cand4.x <= 255.0f && best_e2 * n4 > e4 * best_n2);
+    let t96 = select(best3, -best3.yx, 0.0f > w.x);
+    let c = select(vec2<f32>(128.0f), (select(t96, t96.yx, 0.0f > w.y) + 255.0f) * 0.5f, t2);
+    let normal2 = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal2 = abs(normal2);
     let larger2 = select(abs_normal2.y, abs_normal2.x, abs_normal2.x >= abs_normal2.y);
     let largest2 = select(abs_normal2.z, larger2, larger2 >= abs_normal2.z);
@@ -283,12 +283,12 @@ fn unitpack_hemioct16p_rxgb_encode_codes(v: vec3<f32>) -> vec4<f32> {
     let scaled2 = normal2 * scale2;
     let abs_scaled2 = abs(scaled2);
     let sum3 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    let sum_below_16_2 = sum3 < 16.0f;
+    let sum_below_16_2 = 16.0f > sum3;
     let ok2 = sum3 >= 2.0f && sum_below_16_2;
-    let w2 = select(scaled2, vec3<f32>(0.0f), abs(scaled2) < vec3<f32>(1.8189894e-12f));
+    let w2 = select(scaled2, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled2));
     let w3 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w2, ok2);
     let t97 = vec3<f32>(w3.xy, select(0.0f, w3.z, w3.z > 0.0f));
-    let normal3 = select(t97, vec3<f32>(0.0f), abs(t97) < vec3<f32>(1.1754944e-38f));
+    let normal3 = select(t97, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(t97));
     let abs_normal3 = abs(normal3);
     let larger3 = select(abs_normal3.y, abs_normal3.x, abs_normal3.x >= abs_normal3.y);
     let largest3 = select(abs_normal3.z, larger3, larger3 >= abs_normal3.z);
@@ -296,9 +296,9 @@ fn unitpack_hemioct16p_rxgb_encode_codes(v: vec3<f32>) -> vec4<f32> {
     let scaled3 = normal3 * scale3;
     let abs_scaled3 = abs(scaled3);
     let sum4 = abs_scaled3.x + abs_scaled3.y + abs_scaled3.z;
-    let sum_below_16_3 = sum4 < 16.0f;
+    let sum_below_16_3 = 16.0f > sum4;
     let ok3 = sum4 >= 2.0f && sum_below_16_3;
-    let w4 = select(scaled3, vec3<f32>(0.0f), abs(scaled3) < vec3<f32>(1.8189894e-12f));
+    let w4 = select(scaled3, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled3));
     let w5 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w4, ok3);
     let split_hi = bitcast<f32>(bitcast<u32>(w5.x) & 0xfffff000u);
     let split_lo = w5.x - split_hi;
@@ -325,18 +325,18 @@ fn unitpack_hemioct16p_rxgb_encode_codes(v: vec3<f32>) -> vec4<f32> {
     let up3 = select(
         0.0f,
         select(
-            select(0.0f, one_if6, t101 < 0.0f),
+            select(0.0f, one_if6, 0.0f > t101),
             select(1.0f, one_if5, t101 > 0.0f),
             w5.z >= 0.0f
         ),
-        estimate3 < 255.0f
+        255.0f > estimate3
     );
     let t103 = estimate3 - 1.0f - 127.0f;
     let t104 = t103 * t103 * len2;
     let one_if7 = select(0.0f, 1.0f, big2 >= t104);
     let one_if8 = select(0.0f, 1.0f, big2 <= t104);
     let t105 = select(
-        select(0.0f, one_if8, t103 < 0.0f),
+        select(0.0f, one_if8, 0.0f > t103),
         select(1.0f, one_if7, t103 > 0.0f),
         w5.z >= 0.0f
     )

@@ -49,7 +49,7 @@ fn unitpack_hemioct24p_decode(code: u32) -> vec3<f32> {
 //   angle, measured against the input's fixed-point magnitudes (the first on ties); then the
 //   input's signs.
 fn unitpack_hemioct24p_encode_codes(v: vec3<f32>) -> vec2<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -57,9 +57,9 @@ fn unitpack_hemioct24p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let t1 = abs(vec3<f32>(w.xy, select(0.0f, w.z, w.z > 0.0f)));
     let sum2 = t1.x + t1.y + t1.z;
     let t2 = ok && sum2 > 0.0f;
@@ -68,7 +68,7 @@ fn unitpack_hemioct24p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let t3 = a.x + a.y;
     let estimate = floor(t3 / l1 * 2047.0f);
     let big = t3 * 2047.0f;
-    let step_down = select(0.0f, -1.0f, big < estimate * l1);
+    let step_down = select(0.0f, -1.0f, estimate * l1 > big);
     let nudge = select(step_down, 1.0f, big >= (estimate + 1.0f) * l1);
     let t4 = estimate + nudge;
     let t5 = select(-2047.0f, t4, t4 >= (-2047.0f));
@@ -76,7 +76,7 @@ fn unitpack_hemioct24p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let t6 = a.x - a.y;
     let estimate2 = floor(t6 / l1 * 2047.0f);
     let big2 = t6 * 2047.0f;
-    let step_down2 = select(0.0f, -1.0f, big2 < estimate2 * l1);
+    let step_down2 = select(0.0f, -1.0f, estimate2 * l1 > big2);
     let nudge2 = select(step_down2, 1.0f, big2 >= (estimate2 + 1.0f) * l1);
     let t7 = estimate2 + nudge2;
     let t8 = select(-2047.0f, t7, t7 >= (-2047.0f));
@@ -86,7 +86,7 @@ fn unitpack_hemioct24p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let t10 = floor(t9 / l1 * 2047.0f);
     let t11 = t9 * 2047.0f;
     let t12 = select(
-        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t11 < t10 * l1),
+        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t10 * l1 > t11),
         vec2<f32>(1.0f),
         t11 >= (t10 + 1.0f) * l1
     );
@@ -97,15 +97,15 @@ fn unitpack_hemioct24p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let t17 = floor(t16 / l1 * 2047.0f);
     let t18 = t16 * 2047.0f;
     let t19 = select(
-        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t18 < t17 * l1),
+        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t17 * l1 > t18),
         vec2<f32>(1.0f),
         t18 >= (t17 + 1.0f) * l1
     );
     let t20 = t17 + t19;
     let t21 = select(vec2<f32>(-2047.0f), t20, t20 >= vec2<f32>(-2047.0f));
     let t22 = select(vec2<f32>(2047.0f), t21, t21 <= vec2<f32>(2047.0f));
-    let t23 = select(t22, -t15, s0 + t0 < 0.0f);
-    let cand = select(t23, t23.yx, t23.x < t23.y);
+    let t23 = select(t22, -t15, 0.0f > s0 + t0);
+    let cand = select(t23, t23.yx, t23.y > t23.x);
     let t24 = 4094.0f - cand.x - cand.x;
     let t25 = select(0.0f, t24, t24 >= 0.0f);
     let t26 = cand.x + cand.y;
@@ -115,11 +115,11 @@ fn unitpack_hemioct24p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let t25_u = u32(t25);
     let axd = afix.yzx * vec3<u32>(vec3<f32>(t25, t26, t27))
         - afix.zxy * vec3<u32>(vec3<f32>(t27, t25, t26));
-    let t28 = select(0u - axd.x, axd.x, axd.x < 0x80000000u);
+    let t28 = select(0u - axd.x, axd.x, 0x80000000u > axd.x);
     let t29 = t28 >> 16u;
-    let t30 = select(0u - axd.y, axd.y, axd.y < 0x80000000u);
+    let t30 = select(0u - axd.y, axd.y, 0x80000000u > axd.y);
     let t31 = t30 >> 16u;
-    let t32 = select(0u - axd.z, axd.z, axd.z < 0x80000000u);
+    let t32 = select(0u - axd.z, axd.z, 0x80000000u > axd.z);
     let t33 = t32 >> 16u;
     let t34 = vec3<u32>((t29 * t29) << 3u, (t31 * t31) << 3u, (t33 * t33) << 3u);
     let t35 = vec3<u32>(
@@ -132,8 +132,8 @@ fn unitpack_hemioct24p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let n = f32(t26_u * t26_u + t27_u * t27_u + t25_u * t25_u);
     let s_up = s0 + 1.0f;
     let t_up = t0 + 1.0f;
-    let t37 = select(vec2<f32>(s_up, t0), -vec2<f32>(t0, s_up), s_up + t0 < 0.0f);
-    let cand2 = select(t37, t37.yx, t37.x < t37.y);
+    let t37 = select(vec2<f32>(s_up, t0), -vec2<f32>(t0, s_up), 0.0f > s_up + t0);
+    let cand2 = select(t37, t37.yx, t37.y > t37.x);
     let t38 = 4094.0f - cand2.x - cand2.x;
     let t39 = select(0.0f, t38, t38 >= 0.0f);
     let t40 = cand2.x + cand2.y;
@@ -143,11 +143,11 @@ fn unitpack_hemioct24p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let t39_u = u32(t39);
     let axd2 = afix.yzx * vec3<u32>(vec3<f32>(t39, t40, t41))
         - afix.zxy * vec3<u32>(vec3<f32>(t41, t39, t40));
-    let t42 = select(0u - axd2.x, axd2.x, axd2.x < 0x80000000u);
+    let t42 = select(0u - axd2.x, axd2.x, 0x80000000u > axd2.x);
     let t43 = t42 >> 16u;
-    let t44 = select(0u - axd2.y, axd2.y, axd2.y < 0x80000000u);
+    let t44 = select(0u - axd2.y, axd2.y, 0x80000000u > axd2.y);
     let t45 = t44 >> 16u;
-    let t46 = select(0u - axd2.z, axd2.z, axd2.z < 0x80000000u);
+    let t46 = select(0u - axd2.z, axd2.z, 0x80000000u > axd2.z);
     let t47 = t46 >> 16u;
     let t48 = vec3<u32>((t43 * t43) << 3u, (t45 * t45) << 3u, (t47 * t47) << 3u);
     let t49 = vec3<u32>(
@@ -158,12 +158,12 @@ fn unitpack_hemioct24p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let t50 = t48 + t49;
     let e2 = f32(t50.x + t50.y + t50.z);
     let n2 = f32(t40_u * t40_u + t41_u * t41_u + t39_u * t39_u);
-    let t51 = cand2.x <= 2047.0f && e2 * n < e * n2;
+    let t51 = cand2.x <= 2047.0f && e * n2 > e2 * n;
     let best = select(cand, cand2, t51);
     let best_e = select(e, e2, t51);
     let best_n = select(n, n2, t51);
-    let t52 = select(vec2<f32>(s0, t_up), -vec2<f32>(t_up, s0), s0 + t_up < 0.0f);
-    let cand3 = select(t52, t52.yx, t52.x < t52.y);
+    let t52 = select(vec2<f32>(s0, t_up), -vec2<f32>(t_up, s0), 0.0f > s0 + t_up);
+    let cand3 = select(t52, t52.yx, t52.y > t52.x);
     let t53 = 4094.0f - cand3.x - cand3.x;
     let t54 = select(0.0f, t53, t53 >= 0.0f);
     let t55 = cand3.x + cand3.y;
@@ -173,11 +173,11 @@ fn unitpack_hemioct24p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let t54_u = u32(t54);
     let axd3 = afix.yzx * vec3<u32>(vec3<f32>(t54, t55, t56))
         - afix.zxy * vec3<u32>(vec3<f32>(t56, t54, t55));
-    let t57 = select(0u - axd3.x, axd3.x, axd3.x < 0x80000000u);
+    let t57 = select(0u - axd3.x, axd3.x, 0x80000000u > axd3.x);
     let t58 = t57 >> 16u;
-    let t59 = select(0u - axd3.y, axd3.y, axd3.y < 0x80000000u);
+    let t59 = select(0u - axd3.y, axd3.y, 0x80000000u > axd3.y);
     let t60 = t59 >> 16u;
-    let t61 = select(0u - axd3.z, axd3.z, axd3.z < 0x80000000u);
+    let t61 = select(0u - axd3.z, axd3.z, 0x80000000u > axd3.z);
     let t62 = t61 >> 16u;
     let t63 = vec3<u32>((t58 * t58) << 3u, (t60 * t60) << 3u, (t62 * t62) << 3u);
     let t64 = vec3<u32>(
@@ -188,12 +188,12 @@ fn unitpack_hemioct24p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let t65 = t63 + t64;
     let e3 = f32(t65.x + t65.y + t65.z);
     let n3 = f32(t55_u * t55_u + t56_u * t56_u + t54_u * t54_u);
-    let t66 = cand3.x <= 2047.0f && e3 * best_n < best_e * n3;
+    let t66 = cand3.x <= 2047.0f && best_e * n3 > e3 * best_n;
     let best2 = select(best, cand3, t66);
     let best_e2 = select(best_e, e3, t66);
     let best_n2 = select(best_n, n3, t66);
-    let t67 = select(t22 + 1.0f, -(t15 + 1.0f), s_up + t_up < 0.0f);
-    let cand4 = select(t67, t67.yx, t67.x < t67.y);
+    let t67 = select(t22 + 1.0f, -(t15 + 1.0f), 0.0f > s_up + t_up);
+    let cand4 = select(t67, t67.yx, t67.y > t67.x);
     let t68 = 4094.0f - cand4.x - cand4.x;
     let t69 = select(0.0f, t68, t68 >= 0.0f);
     let t70 = cand4.x + cand4.y;
@@ -203,11 +203,11 @@ fn unitpack_hemioct24p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let t69_u = u32(t69);
     let axd4 = afix.yzx * vec3<u32>(vec3<f32>(t69, t70, t71))
         - afix.zxy * vec3<u32>(vec3<f32>(t71, t69, t70));
-    let t72 = select(0u - axd4.x, axd4.x, axd4.x < 0x80000000u);
+    let t72 = select(0u - axd4.x, axd4.x, 0x80000000u > axd4.x);
     let t73 = t72 >> 16u;
-    let t74 = select(0u - axd4.y, axd4.y, axd4.y < 0x80000000u);
+    let t74 = select(0u - axd4.y, axd4.y, 0x80000000u > axd4.y);
     let t75 = t74 >> 16u;
-    let t76 = select(0u - axd4.z, axd4.z, axd4.z < 0x80000000u);
+    let t76 = select(0u - axd4.z, axd4.z, 0x80000000u > axd4.z);
     let t77 = t76 >> 16u;
     let t78 = vec3<u32>((t73 * t73) << 3u, (t75 * t75) << 3u, (t77 * t77) << 3u);
     let t79 = vec3<u32>(
@@ -218,9 +218,9 @@ fn unitpack_hemioct24p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let t80 = t78 + t79;
     let e4 = f32(t80.x + t80.y + t80.z);
     let n4 = f32(t70_u * t70_u + t71_u * t71_u + t69_u * t69_u);
-    let best3 = select(best2, cand4, cand4.x <= 2047.0f && e4 * best_n2 < best_e2 * n4);
-    let t81 = select(best3, -best3.yx, w.x < 0.0f);
-    return select(vec2<f32>(0.0f), select(t81, t81.yx, w.y < 0.0f), t2);
+    let best3 = select(best2, cand4, cand4.x <= 2047.0f && best_e2 * n4 > e4 * best_n2);
+    let t81 = select(best3, -best3.yx, 0.0f > w.x);
+    return select(vec2<f32>(0.0f), select(t81, t81.yx, 0.0f > w.y), t2);
 }
 
 // unitpack_hemioct24p_encode_float: precise encoder, float form.

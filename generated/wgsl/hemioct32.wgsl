@@ -52,12 +52,12 @@ fn unitpack_hemioct32_decode(code: u32) -> vec3<f32> {
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 fn unitpack_hemioct32_encode_float(v: vec3<f32>) -> vec2<f32> {
-    let t1 = vec3<f32>(v.xy, select(v.z, 0.0f, v.z < 0.0f));
+    let t1 = vec3<f32>(v.xy, select(v.z, 0.0f, 0.0f > v.z));
     let abs_t1 = abs(t1);
     let norm1 = abs_t1.x + abs_t1.y + abs_t1.z;
     let fit = select(
         0.25f,
-        select(1.0f, 1.2676506e30f, norm1 < 7.888609e-31f),
+        select(1.0f, 1.2676506e30f, 7.888609e-31f > norm1),
         norm1 <= bitcast<f32>(0x7f7fffffu)
     );
     let w = t1 * fit;
@@ -75,7 +75,7 @@ fn unitpack_hemioct32_encode_float(v: vec3<f32>) -> vec2<f32> {
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 fn unitpack_hemioct32_round_codes(v: vec3<f32>) -> vec2<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -83,9 +83,9 @@ fn unitpack_hemioct32_round_codes(v: vec3<f32>) -> vec2<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let t1 = abs(vec3<f32>(w.xy, select(0.0f, w.z, w.z > 0.0f)));
     let l1 = t1.x + t1.y + t1.z;
     let n = vec2<f32>(w.x + w.y, w.x - w.y);
@@ -93,12 +93,12 @@ fn unitpack_hemioct32_round_codes(v: vec3<f32>) -> vec2<f32> {
     let t2 = round(abs_n / l1 * 32767.0f);
     let t3 = abs_n * 32767.0f;
     let t4 = select(
-        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t3 < (t2 - 0.5f) * l1),
+        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), (t2 - 0.5f) * l1 > t3),
         vec2<f32>(1.0f),
         t3 >= (t2 + 0.5f) * l1
     );
     let t5 = t2 + t4;
-    return select(vec2<f32>(0.0f), select(t5, -t5, n < vec2<f32>(0.0f)), ok && l1 > 0.0f);
+    return select(vec2<f32>(0.0f), select(t5, -t5, vec2<f32>(0.0f) > n), ok && l1 > 0.0f);
 }
 
 // unitpack_hemioct32_encode: fast encoder.

@@ -32,7 +32,7 @@ fn unitpack_latlongd24_sincos_pi(x: f32) -> vec2<f32> {
     let t2 = (((-0.02580689f * c2 + 0.23533063f) * c2 + (-1.3352628f)) * c2 + 4.058712f) * c2;
     let co = (t2 + (-4.934802f)) * c2 + 1.0f;
     let t3 = select(vec2<f32>(s, co), vec2<f32>(co, s), swap);
-    return select(t3, -t3, vec2<bool>((x < 0.0f), back));
+    return select(t3, -t3, vec2<bool>(0.0f > x, back));
 }
 
 // unitpack_latlongd24_decode_float: decoder, float form.
@@ -55,7 +55,7 @@ fn unitpack_latlongd24_decode_float(params: vec2<f32>) -> vec3<f32> {
 //   same on every implementation): the entry of the ring table (3629 entries of (offset, count),
 //   u32 each) that encode reads.
 fn unitpack_latlongd24_encode_ring(v: vec3<f32>) -> u32 {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -63,9 +63,9 @@ fn unitpack_latlongd24_encode_ring(v: vec3<f32>) -> u32 {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let fixed_f = floor(abs(w2.x) * 2097152.0f);
     let fixed2 = u32(fixed_f);
@@ -143,8 +143,8 @@ fn unitpack_latlongd24_encode_ring(v: vec3<f32>) -> u32 {
     let h = round(r * 0.31830987f);
     let h2 = select(h, h + 2097152.0f, far);
     let h3 = select(h2, 4194304.0f - h2, y_major);
-    let h4 = select(h3, 8388608.0f - h3, w2.z < 0.0f);
-    let angle = select(h4, -h4, rho < 0.0f);
+    let h4 = select(h3, 8388608.0f - h3, 0.0f > w2.z);
+    let angle = select(h4, -h4, 0.0f > rho);
     let theta = angle * 2.0f - 8388608.0f;
     return u32(round((theta + 8388608.0f) * 0.00021624565f));
 }
@@ -156,7 +156,7 @@ fn unitpack_latlongd24_encode_ring(v: vec3<f32>) -> u32 {
 // Portable (as the header says): the same code on every such implementation; denormal input
 //   components count as zero.
 fn unitpack_latlongd24_encode(v: vec3<f32>, ring: vec2<u32>) -> u32 {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -164,9 +164,9 @@ fn unitpack_latlongd24_encode(v: vec3<f32>, ring: vec2<u32>) -> u32 {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let abs_w2_x = abs(w2.x);
     let abs_w2_y = abs(w2.y);
@@ -204,10 +204,10 @@ fn unitpack_latlongd24_encode(v: vec3<f32>, ring: vec2<u32>) -> u32 {
     let h = round(r * 0.31830987f);
     let h2 = select(h, h + 2097152.0f, far);
     let h3 = select(h2, 4194304.0f - h2, y_major);
-    let h4 = select(h3, 8388608.0f - h3, w2.x < 0.0f);
-    let phi = select(h4, -h4, w2.y < 0.0f);
+    let h4 = select(h3, 8388608.0f - h3, 0.0f > w2.x);
+    let phi = select(h4, -h4, 0.0f > w2.y);
     let t9 = u32(round((phi + 8388608.0f) * f32(ring.y) * 5.9604645e-8f));
-    return select(0u, ring.x + select(0u, t9, t9 < ring.y), ok);
+    return select(0u, ring.x + select(0u, t9, ring.y > t9), ok);
 }
 
 // unitpack_latlongd24_encode_float: fast encoder, float form.
@@ -227,8 +227,8 @@ fn unitpack_latlongd24_encode_float(v: vec3<f32>, ring: vec2<u32>) -> vec2<f32> 
 //   fetch the ring table's entries g and g + 1 for decode_params (the code's ring is one of them).
 fn unitpack_latlongd24_decode_ring(code: u32) -> u32 {
     let t1 = code & 0xffffffu;
-    let t2 = select(0xffffffu, t1, t1 < 0xffffffu);
-    let t3 = !(t2 < 0x800000u);
+    let t2 = select(0xffffffu, t1, 0xffffffu > t1);
+    let t3 = !(0x800000u > t2);
     let t4 = select(t2, 0xffffffu - t2, t3);
     let t5 = t4 + t4 + 1u;
     let t6 = 0xffffffu - t4;
@@ -293,8 +293,8 @@ fn unitpack_latlongd24_decode_ring(code: u32) -> u32 {
     let h = round(r * 0.31830987f);
     let h2 = select(h, h + 2097152.0f, far);
     let h3 = select(h2, 4194304.0f - h2, y_major);
-    let h4 = select(h3, 8388608.0f - h3, t9 < 0.0f);
-    let angle = select(h4, -h4, t12 < 0.0f);
+    let h4 = select(h3, 8388608.0f - h3, 0.0f > t9);
+    let angle = select(h4, -h4, 0.0f > t12);
     let t21 = angle * 0.0004324913f;
     let t22 = select(floor(t21), 3628.0f + floor(0.0f - t21), t3);
     let t23 = select(0.0f, t22, t22 >= 0.0f);
@@ -314,8 +314,8 @@ fn unitpack_latlongd24_decode_params(
     ring1: vec2<u32>
 ) -> vec2<f32> {
     let t1 = code & 0xffffffu;
-    let t2 = select(0xffffffu, t1, t1 < 0xffffffu);
-    let t3 = !(t2 < ring1.x);
+    let t2 = select(0xffffffu, t1, 0xffffffu > t1);
+    let t3 = !(ring1.x > t2);
     let t4 = f32(t2 - select(ring0.x, ring1.x, t3));
     let t5 = f32(select(ring0.y, ring1.y, t3));
     let big = t4 * 16777216.0f;

@@ -32,7 +32,7 @@ fn unitpack_latlongd32_sincos_pi(x: f32) -> vec2<f32> {
     let t2 = (((-0.02580689f * c2 + 0.23533063f) * c2 + (-1.3352628f)) * c2 + 4.058712f) * c2;
     let co = (t2 + (-4.934802f)) * c2 + 1.0f;
     let t3 = select(vec2<f32>(s, co), vec2<f32>(co, s), swap);
-    return select(t3, -t3, vec2<bool>((x < 0.0f), back));
+    return select(t3, -t3, vec2<bool>(0.0f > x, back));
 }
 
 // unitpack_latlongd32_decode_float: decoder, float form.
@@ -55,7 +55,7 @@ fn unitpack_latlongd32_decode_float(params: vec2<f32>) -> vec3<f32> {
 //   same on every implementation): the entry of the ring table (58075 entries of (offset, count),
 //   u32 each) that encode reads.
 fn unitpack_latlongd32_encode_ring(v: vec3<f32>) -> u32 {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -63,9 +63,9 @@ fn unitpack_latlongd32_encode_ring(v: vec3<f32>) -> u32 {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let fixed_f = floor(abs(w2.x) * 2097152.0f);
     let fixed2 = u32(fixed_f);
@@ -143,8 +143,8 @@ fn unitpack_latlongd32_encode_ring(v: vec3<f32>) -> u32 {
     let h = round(r * 0.31830987f);
     let h2 = select(h, h + 2097152.0f, far);
     let h3 = select(h2, 4194304.0f - h2, y_major);
-    let h4 = select(h3, 8388608.0f - h3, w2.z < 0.0f);
-    let angle = select(h4, -h4, rho < 0.0f);
+    let h4 = select(h3, 8388608.0f - h3, 0.0f > w2.z);
+    let angle = select(h4, -h4, 0.0f > rho);
     let theta = angle * 2.0f - 8388608.0f;
     return u32(round((theta + 8388608.0f) * 0.0034614801f));
 }
@@ -156,7 +156,7 @@ fn unitpack_latlongd32_encode_ring(v: vec3<f32>) -> u32 {
 // Portable (as the header says): the same code on every such implementation; denormal input
 //   components count as zero.
 fn unitpack_latlongd32_encode(v: vec3<f32>, ring: vec2<u32>) -> u32 {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -164,9 +164,9 @@ fn unitpack_latlongd32_encode(v: vec3<f32>, ring: vec2<u32>) -> u32 {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let abs_w2_x = abs(w2.x);
     let abs_w2_y = abs(w2.y);
@@ -204,10 +204,10 @@ fn unitpack_latlongd32_encode(v: vec3<f32>, ring: vec2<u32>) -> u32 {
     let h = round(r * 0.31830987f);
     let h2 = select(h, h + 2097152.0f, far);
     let h3 = select(h2, 4194304.0f - h2, y_major);
-    let h4 = select(h3, 8388608.0f - h3, w2.x < 0.0f);
-    let phi = select(h4, -h4, w2.y < 0.0f);
+    let h4 = select(h3, 8388608.0f - h3, 0.0f > w2.x);
+    let phi = select(h4, -h4, 0.0f > w2.y);
     let t9 = u32(round((phi + 8388608.0f) * f32(ring.y) * 5.9604645e-8f));
-    return select(0u, ring.x + select(0u, t9, t9 < ring.y), ok);
+    return select(0u, ring.x + select(0u, t9, ring.y > t9), ok);
 }
 
 // unitpack_latlongd32_encode_float: fast encoder, float form.
@@ -226,8 +226,8 @@ fn unitpack_latlongd32_encode_float(v: vec3<f32>, ring: vec2<u32>) -> vec2<f32> 
 // Out: the guess g in 0 … 58073 for the code's ring, from the equal-area count, decided exactly:
 //   fetch the ring table's entries g and g + 1 for decode_params (the code's ring is one of them).
 fn unitpack_latlongd32_decode_ring(code: u32) -> u32 {
-    let t1 = select(0xfffffffeu, code, code < 0xfffffffeu);
-    let t2 = !(t1 < 0x80000000u);
+    let t1 = select(0xfffffffeu, code, 0xfffffffeu > code);
+    let t2 = !(0x80000000u > t1);
     let t3 = select(t1, 0xfffffffeu - t1, t2);
     let t4 = t3 + t3 + 1u;
     let t5 = 0xfffffffeu - t3;
@@ -292,8 +292,8 @@ fn unitpack_latlongd32_decode_ring(code: u32) -> u32 {
     let h = round(r * 0.31830987f);
     let h2 = select(h, h + 2097152.0f, far);
     let h3 = select(h2, 4194304.0f - h2, y_major);
-    let h4 = select(h3, 8388608.0f - h3, t8 < 0.0f);
-    let angle = select(h4, -h4, t11 < 0.0f);
+    let h4 = select(h3, 8388608.0f - h3, 0.0f > t8);
+    let angle = select(h4, -h4, 0.0f > t11);
     let t20 = angle * 0.0069229603f;
     let t21 = select(floor(t20), 58074.0f + floor(0.0f - t20), t2);
     let t22 = select(0.0f, t21, t21 >= 0.0f);
@@ -312,8 +312,8 @@ fn unitpack_latlongd32_decode_params(
     ring0: vec2<u32>,
     ring1: vec2<u32>
 ) -> vec2<f32> {
-    let t1 = select(0xfffffffeu, code, code < 0xfffffffeu);
-    let t2 = !(t1 < ring1.x);
+    let t1 = select(0xfffffffeu, code, 0xfffffffeu > code);
+    let t2 = !(ring1.x > t1);
     let t3 = f32(t1 - select(ring0.x, ring1.x, t2));
     let t4 = f32(select(ring0.y, ring1.y, t2));
     let big = t3 * 16777216.0f;

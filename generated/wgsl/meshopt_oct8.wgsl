@@ -37,7 +37,7 @@ fn unitpack_meshopt_oct8_decode_float(params: vec4<f32>) -> vec3<f32> {
     let t4 = 1.0f - abs(t2);
     let abs_t3 = abs(t3);
     let t5 = t4 - abs_t3;
-    let t = select(0.0f, t5, t5 < 0.0f);
+    let t = select(0.0f, t5, 0.0f > t5);
     let t6 = vec3<f32>(select(t, -t, t2 >= 0.0f), select(t, -t, t3 >= 0.0f), abs_t3);
     let v = vec3<f32>(t2, t3, t4) - t6;
     let v_sq = v * v;
@@ -46,7 +46,7 @@ fn unitpack_meshopt_oct8_decode_float(params: vec4<f32>) -> vec3<f32> {
     let floor_abs_t7 = floor(abs_t7);
     let t8 = floor_abs_t7
         + select(vec3<f32>(0.0f), vec3<f32>(1.0f), abs_t7 - floor_abs_t7 >= vec3<f32>(0.5f));
-    let t9 = select(t8, -t8, t7 < vec3<f32>(0.0f));
+    let t9 = select(t8, -t8, vec3<f32>(0.0f) > t7);
     let t10 = select(t9, vec3<f32>(0.0f), t9 == vec3<f32>(0.0f)) * 0.007874016f;
     return select(vec3<f32>(-1.0f), t10, t10 >= vec3<f32>(-1.0f));
 }
@@ -70,7 +70,7 @@ fn unitpack_meshopt_oct8_decode(code: u32) -> vec3<f32> {
     let t5 = 1.0f - abs(t3);
     let abs_t4 = abs(t4);
     let t6 = t5 - abs_t4;
-    let t = select(0.0f, t6, t6 < 0.0f);
+    let t = select(0.0f, t6, 0.0f > t6);
     let t7 = vec3<f32>(select(t, -t, t3 >= 0.0f), select(t, -t, t4 >= 0.0f), abs_t4);
     let v = vec3<f32>(t3, t4, t5) - t7;
     let v_sq = v * v;
@@ -79,7 +79,7 @@ fn unitpack_meshopt_oct8_decode(code: u32) -> vec3<f32> {
     let floor_abs_t8 = floor(abs_t8);
     let t9 = floor_abs_t8
         + select(vec3<f32>(0.0f), vec3<f32>(1.0f), abs_t8 - floor_abs_t8 >= vec3<f32>(0.5f));
-    let t10 = select(t9, -t9, t8 < vec3<f32>(0.0f));
+    let t10 = select(t9, -t9, vec3<f32>(0.0f) > t8);
     let t11 = select(t10, vec3<f32>(0.0f), t10 == vec3<f32>(0.0f)) * 0.007874016f;
     return select(vec3<f32>(-1.0f), t11, t11 >= vec3<f32>(-1.0f));
 }
@@ -103,7 +103,7 @@ fn unitpack_meshopt_oct8_round_codes(v: vec3<f32>) -> vec4<f32> {
     let t8 = select(-1.0f, t4, t4 >= (-1.0f));
     let t9 = select(1.0f, t8, t8 <= 1.0f) * 127.0f + select(-0.5f, 0.5f, t4 >= 0.0f);
     let t10 = floor(abs(t9));
-    let codes = vec4<f32>(select(t7, -t7, t6 < 0.0f), select(t10, -t10, t9 < 0.0f), 127.0f, 0.0f);
+    let codes = vec4<f32>(select(t7, -t7, 0.0f > t6), select(t10, -t10, 0.0f > t9), 127.0f, 0.0f);
     return codes;
 }
 
@@ -153,7 +153,7 @@ fn unitpack_meshopt_oct8_encode(v: vec3<f32>) -> u32 {
     let t8 = select(-1.0f, t4, t4 >= (-1.0f));
     let t9 = select(1.0f, t8, t8 <= 1.0f) * 127.0f + select(-0.5f, 0.5f, t4 >= 0.0f);
     let t10 = floor(abs(t9));
-    let codes = vec4<f32>(select(t7, -t7, t6 < 0.0f), select(t10, -t10, t9 < 0.0f), 127.0f, 0.0f);
+    let codes = vec4<f32>(select(t7, -t7, 0.0f > t6), select(t10, -t10, 0.0f > t9), 127.0f, 0.0f);
     let t11 = (u32(codes.x + 256.0f) & 255u) | ((u32(codes.y + 256.0f) << 8u) & 0xff00u);
     return t11 | 0x7f0000u | 0u;
 }

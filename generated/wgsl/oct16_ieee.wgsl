@@ -29,7 +29,7 @@ fn unitpack_oct16_ieee_decode_float(params: vec2<f32>) -> vec3<f32> {
     let z = 1.0f - abs_params.x - abs_params.y;
     let folded = (1.0f - abs(params.yx))
         * select(vec2<f32>(-1.0f), vec2<f32>(1.0f), params >= vec2<f32>(0.0f));
-    let v = vec3<f32>(select(params, folded, z < 0.0f), z);
+    let v = vec3<f32>(select(params, folded, 0.0f > z), z);
     let v_sq = v * v;
     return v / sqrt(v_sq.x + v_sq.y + v_sq.z);
 }

@@ -37,7 +37,7 @@ fn unitpack_oct24_rgb8_oct24_decode_float(e: vec2<f32>) -> vec3<f32> {
     let z = 1.0f - abs_e.x - abs_e.y;
     let folded = (1.0f - abs(e.yx))
         * select(vec2<f32>(-1.0f), vec2<f32>(1.0f), e >= vec2<f32>(0.0f));
-    let v = vec3<f32>(select(e, folded, z < 0.0f), z);
+    let v = vec3<f32>(select(e, folded, 0.0f > z), z);
     let v_sq = v * v;
     return v / sqrt(v_sq.x + v_sq.y + v_sq.z);
 }
@@ -79,7 +79,7 @@ fn unitpack_oct24_rgb8_decode(code: u32) -> vec3<f32> {
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 fn unitpack_oct24_rgb8_round_codes(v: vec3<f32>) -> vec3<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -87,9 +87,9 @@ fn unitpack_oct24_rgb8_round_codes(v: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let abs_w = abs(w);
     let l1 = abs_w.x + abs_w.y + abs_w.z;
     let n = select(
@@ -101,12 +101,12 @@ fn unitpack_oct24_rgb8_round_codes(v: vec3<f32>) -> vec3<f32> {
     let t1 = round(abs_n / l1 * 2047.0f);
     let t2 = abs_n * 2047.0f;
     let t3 = select(
-        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t2 < (t1 - 0.5f) * l1),
+        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), (t1 - 0.5f) * l1 > t2),
         vec2<f32>(1.0f),
         t2 >= (t1 + 0.5f) * l1
     );
     let t4 = t1 + t3;
-    let t5 = select(vec2<f32>(0.0f), select(t4, -t4, n < vec2<f32>(0.0f)), ok) + 2047.0f;
+    let t5 = select(vec2<f32>(0.0f), select(t4, -t4, vec2<f32>(0.0f) > n), ok) + 2047.0f;
     let x16 = t5.x * 0.0625f;
     let hi = floor(x16);
     let t = floor(t5.y * 0.00390625f);

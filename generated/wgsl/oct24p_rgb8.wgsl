@@ -37,7 +37,7 @@ fn unitpack_oct24p_rgb8_oct24_decode_float(e: vec2<f32>) -> vec3<f32> {
     let z = 1.0f - abs_e.x - abs_e.y;
     let folded = (1.0f - abs(e.yx))
         * select(vec2<f32>(-1.0f), vec2<f32>(1.0f), e >= vec2<f32>(0.0f));
-    let v = vec3<f32>(select(e, folded, z < 0.0f), z);
+    let v = vec3<f32>(select(e, folded, 0.0f > z), z);
     let v_sq = v * v;
     return v / sqrt(v_sq.x + v_sq.y + v_sq.z);
 }
@@ -80,7 +80,7 @@ fn unitpack_oct24p_rgb8_decode(code: u32) -> vec3<f32> {
 //   angle, measured against the input's fixed-point magnitudes (the first on ties); then the
 //   input's signs, unfolded below the equator.
 fn unitpack_oct24p_rgb8_encode_codes(v: vec3<f32>) -> vec3<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -88,14 +88,14 @@ fn unitpack_oct24p_rgb8_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let a = select(vec3<f32>(0.0f, 0.0f, 2.0f), abs(w), ok);
     let l1 = a.x + a.y + a.z;
     let estimate = floor(a.x / l1 * 2047.0f);
     let big = a.x * 2047.0f;
-    let step_down = select(0.0f, -1.0f, big < estimate * l1);
+    let step_down = select(0.0f, -1.0f, estimate * l1 > big);
     let nudge = select(step_down, 1.0f, big >= (estimate + 1.0f) * l1);
     let t1 = estimate + nudge;
     let t2 = t1 >= (-2047.0f);
@@ -104,7 +104,7 @@ fn unitpack_oct24p_rgb8_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let s0 = select(2047.0f, t3, t4);
     let estimate2 = floor(a.y / l1 * 2047.0f);
     let big2 = a.y * 2047.0f;
-    let step_down2 = select(0.0f, -1.0f, big2 < estimate2 * l1);
+    let step_down2 = select(0.0f, -1.0f, estimate2 * l1 > big2);
     let nudge2 = select(step_down2, 1.0f, big2 >= (estimate2 + 1.0f) * l1);
     let t5 = estimate2 + nudge2;
     let t6 = select(-2047.0f, t5, t5 >= (-2047.0f));
@@ -131,11 +131,11 @@ fn unitpack_oct24p_rgb8_encode_codes(v: vec3<f32>) -> vec3<f32> {
                     vec3<bool>(t10, t12, t4)
                 )
             );
-    let t14 = select(0u - axd.x, axd.x, axd.x < 0x80000000u);
+    let t14 = select(0u - axd.x, axd.x, 0x80000000u > axd.x);
     let t15 = t14 >> 16u;
-    let t16 = select(0u - axd.y, axd.y, axd.y < 0x80000000u);
+    let t16 = select(0u - axd.y, axd.y, 0x80000000u > axd.y);
     let t17 = t16 >> 16u;
-    let t18 = select(0u - axd.z, axd.z, axd.z < 0x80000000u);
+    let t18 = select(0u - axd.z, axd.z, 0x80000000u > axd.z);
     let t19 = t18 >> 16u;
     let t20 = vec3<u32>((t15 * t15) << 3u, (t17 * t17) << 3u, (t19 * t19) << 3u);
     let t21 = vec3<u32>(
@@ -155,11 +155,11 @@ fn unitpack_oct24p_rgb8_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let t24_u = u32(t24);
     let axd2 = afix.yzx * vec3<u32>(vec3<f32>(t24, s_up, t0))
         - afix.zxy * vec3<u32>(vec3<f32>(t0, t24, s_up));
-    let t25 = select(0u - axd2.x, axd2.x, axd2.x < 0x80000000u);
+    let t25 = select(0u - axd2.x, axd2.x, 0x80000000u > axd2.x);
     let t26 = t25 >> 16u;
-    let t27 = select(0u - axd2.y, axd2.y, axd2.y < 0x80000000u);
+    let t27 = select(0u - axd2.y, axd2.y, 0x80000000u > axd2.y);
     let t28 = t27 >> 16u;
-    let t29 = select(0u - axd2.z, axd2.z, axd2.z < 0x80000000u);
+    let t29 = select(0u - axd2.z, axd2.z, 0x80000000u > axd2.z);
     let t30 = t29 >> 16u;
     let t31 = vec3<u32>((t26 * t26) << 3u, (t28 * t28) << 3u, (t30 * t30) << 3u);
     let t32 = vec3<u32>(
@@ -170,7 +170,7 @@ fn unitpack_oct24p_rgb8_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let t33 = t31 + t32;
     let e2 = f32(t33.x + t33.y + t33.z);
     let n2 = f32(s_up_u * s_up_u + t0_u2 * t0_u2 + t24_u * t24_u);
-    let t34 = s_up + t0 <= 2047.0f && e2 * n < e * n2;
+    let t34 = s_up + t0 <= 2047.0f && e * n2 > e2 * n;
     let t35 = select(vec2<f32>(-2047.0f, 2047.0f), vec2<f32>(t1, t6), vec2<bool>(t2, t7));
     let t36 = vec2<f32>(2047.0f, t9);
     let t37 = select(t36, t35, t35 <= t36);
@@ -184,11 +184,11 @@ fn unitpack_oct24p_rgb8_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let t39_u = u32(t39);
     let axd3 = afix.yzx * vec3<u32>(vec3<f32>(t39, s0, t_up))
         - afix.zxy * vec3<u32>(vec3<f32>(t_up, t39, s0));
-    let t40 = select(0u - axd3.x, axd3.x, axd3.x < 0x80000000u);
+    let t40 = select(0u - axd3.x, axd3.x, 0x80000000u > axd3.x);
     let t41 = t40 >> 16u;
-    let t42 = select(0u - axd3.y, axd3.y, axd3.y < 0x80000000u);
+    let t42 = select(0u - axd3.y, axd3.y, 0x80000000u > axd3.y);
     let t43 = t42 >> 16u;
-    let t44 = select(0u - axd3.z, axd3.z, axd3.z < 0x80000000u);
+    let t44 = select(0u - axd3.z, axd3.z, 0x80000000u > axd3.z);
     let t45 = t44 >> 16u;
     let t46 = vec3<u32>((t41 * t41) << 3u, (t43 * t43) << 3u, (t45 * t45) << 3u);
     let t47 = vec3<u32>(
@@ -199,7 +199,7 @@ fn unitpack_oct24p_rgb8_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let t48 = t46 + t47;
     let e3 = f32(t48.x + t48.y + t48.z);
     let n3 = f32(s0_u2 * s0_u2 + t_up_u * t_up_u + t39_u * t39_u);
-    let t49 = s0 + t_up <= 2047.0f && e3 * best_n < best_e * n3;
+    let t49 = s0 + t_up <= 2047.0f && best_e * n3 > e3 * best_n;
     let best2 = select(best, vec2<f32>(s0, t_up), t49);
     let best_e2 = select(best_e, e3, t49);
     let best_n2 = select(best_n, n3, t49);
@@ -210,11 +210,11 @@ fn unitpack_oct24p_rgb8_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let t51_u = u32(t51);
     let axd4 = afix.yzx * vec3<u32>(vec3<f32>(t51, s_up, t_up))
         - afix.zxy * vec3<u32>(vec3<f32>(t_up, t51, s_up));
-    let t52 = select(0u - axd4.x, axd4.x, axd4.x < 0x80000000u);
+    let t52 = select(0u - axd4.x, axd4.x, 0x80000000u > axd4.x);
     let t53 = t52 >> 16u;
-    let t54 = select(0u - axd4.y, axd4.y, axd4.y < 0x80000000u);
+    let t54 = select(0u - axd4.y, axd4.y, 0x80000000u > axd4.y);
     let t55 = t54 >> 16u;
-    let t56 = select(0u - axd4.z, axd4.z, axd4.z < 0x80000000u);
+    let t56 = select(0u - axd4.z, axd4.z, 0x80000000u > axd4.z);
     let t57 = t56 >> 16u;
     let t58 = vec3<u32>((t53 * t53) << 3u, (t55 * t55) << 3u, (t57 * t57) << 3u);
     let t59 = vec3<u32>(
@@ -225,10 +225,10 @@ fn unitpack_oct24p_rgb8_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let t60 = t58 + t59;
     let e4 = f32(t60.x + t60.y + t60.z);
     let n4 = f32(s_up_u2 * s_up_u2 + t_up_u2 * t_up_u2 + t51_u * t51_u);
-    let best3 = select(best2, t37 + 1.0f, s_up + t_up <= 2047.0f && e4 * best_n2 < best_e2 * n4);
+    let best3 = select(best2, t37 + 1.0f, s_up + t_up <= 2047.0f && best_e2 * n4 > e4 * best_n2);
     let folded = 2047.0f - best3.yx;
-    let t61 = select(best3, folded, w.z < 0.0f);
-    let t62 = select(vec2<f32>(0.0f), select(t61, -t61, w.xy < vec2<f32>(0.0f)), ok) + 2047.0f;
+    let t61 = select(best3, folded, 0.0f > w.z);
+    let t62 = select(vec2<f32>(0.0f), select(t61, -t61, vec2<f32>(0.0f) > w.xy), ok) + 2047.0f;
     let x16 = t62.x * 0.0625f;
     let hi = floor(x16);
     let t = floor(t62.y * 0.00390625f);

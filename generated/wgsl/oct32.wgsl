@@ -29,7 +29,7 @@ fn unitpack_oct32_decode_float(params: vec2<f32>) -> vec3<f32> {
     let z = 1.0f - abs_params.x - abs_params.y;
     let folded = (1.0f - abs(params.yx))
         * select(vec2<f32>(-1.0f), vec2<f32>(1.0f), params >= vec2<f32>(0.0f));
-    let v = vec3<f32>(select(params, folded, z < 0.0f), z);
+    let v = vec3<f32>(select(params, folded, 0.0f > z), z);
     let v_sq = v * v;
     return v / sqrt(v_sq.x + v_sq.y + v_sq.z);
 }
@@ -56,7 +56,7 @@ fn unitpack_oct32_encode_float(v: vec3<f32>) -> vec2<f32> {
     let norm1 = abs_v.x + abs_v.y + abs_v.z;
     let fit = select(
         0.25f,
-        select(1.0f, 1.2676506e30f, norm1 < 7.888609e-31f),
+        select(1.0f, 1.2676506e30f, 7.888609e-31f > norm1),
         norm1 <= bitcast<f32>(0x7f7fffffu)
     );
     let w = v * fit;
@@ -76,7 +76,7 @@ fn unitpack_oct32_encode_float(v: vec3<f32>) -> vec2<f32> {
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 fn unitpack_oct32_round_codes(v: vec3<f32>) -> vec2<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -84,9 +84,9 @@ fn unitpack_oct32_round_codes(v: vec3<f32>) -> vec2<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let abs_w = abs(w);
     let l1 = abs_w.x + abs_w.y + abs_w.z;
     let n = select(
@@ -98,12 +98,12 @@ fn unitpack_oct32_round_codes(v: vec3<f32>) -> vec2<f32> {
     let t1 = round(abs_n / l1 * 32767.0f);
     let t2 = abs_n * 32767.0f;
     let t3 = select(
-        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t2 < (t1 - 0.5f) * l1),
+        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), (t1 - 0.5f) * l1 > t2),
         vec2<f32>(1.0f),
         t2 >= (t1 + 0.5f) * l1
     );
     let t4 = t1 + t3;
-    return select(vec2<f32>(0.0f), select(t4, -t4, n < vec2<f32>(0.0f)), ok);
+    return select(vec2<f32>(0.0f), select(t4, -t4, vec2<f32>(0.0f) > n), ok);
 }
 
 // unitpack_oct32_encode: fast encoder.

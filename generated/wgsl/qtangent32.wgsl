@@ -150,7 +150,7 @@ fn unitpack_qtangent32_decode_tbn(code: u32) -> unitpack_qtangent32_tbn {
 // Portable (as the header says): the same code on every such implementation; denormal input
 //   components count as zero.
 fn unitpack_qtangent32_encode(n: vec3<f32>, t: vec4<f32>) -> u32 {
-    let normal = select(n, vec3<f32>(0.0f), abs(n) < vec3<f32>(1.1754944e-38f));
+    let normal = select(n, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(n));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -158,9 +158,9 @@ fn unitpack_qtangent32_encode(n: vec3<f32>, t: vec4<f32>) -> u32 {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let t1 = vec3<u32>(floor(abs(w2) * 2097152.0f));
     let limb1 = t1.x >> 12u;
@@ -201,15 +201,15 @@ fn unitpack_qtangent32_encode(n: vec3<f32>, t: vec4<f32>) -> u32 {
     let wide = (hi4 << 24u) + lo4;
     let rest = wide - t3 * t3 + 0x40000000u;
     let n2 = select(
-        select(t3, t3 - 1u, rest < 0x40000000u - t3 + 1u),
+        select(t3, t3 - 1u, 0x40000000u - t3 + 1u > rest),
         t3 + 1u,
-        0x40000000u + t3 < rest
+        rest > 0x40000000u + t3
     );
     let rest2 = wide - n2 * n2 + 0x40000000u;
     let n3 = select(
-        select(n2, n2 - 1u, rest2 < 0x40000000u - n2 + 1u),
+        select(n2, n2 - 1u, 0x40000000u - n2 + 1u > rest2),
         n2 + 1u,
-        0x40000000u + n2 < rest2
+        rest2 > 0x40000000u + n2
     );
     let nf = f32(n3);
     let k0 = u32(round(f32(t1.x) / nf * 16777216.0f));
@@ -222,7 +222,7 @@ fn unitpack_qtangent32_encode(n: vec3<f32>, t: vec4<f32>) -> u32 {
     let t8 = (f32(t7) * 4096.0f + f32(t6 & 0xfffu)) / (nf * 2.0f);
     let q0 = u32(floor(t8));
     let rest3 = t6 - q0 * two_n;
-    let negative = !(rest3 < 0x80000000u);
+    let negative = !(0x80000000u > rest3);
     let k0_2 = u32(round(f32(t1.y) / nf * 16777216.0f));
     let r2 = (t1.y << 24u) - k0_2 * n3;
     let t9 = r2 << 1u;
@@ -233,7 +233,7 @@ fn unitpack_qtangent32_encode(n: vec3<f32>, t: vec4<f32>) -> u32 {
     let t13 = (f32(t12) * 4096.0f + f32(t11 & 0xfffu)) / (nf * 2.0f);
     let q0_2 = u32(floor(t13));
     let rest4 = t11 - q0_2 * two_n2;
-    let negative2 = !(rest4 < 0x80000000u);
+    let negative2 = !(0x80000000u > rest4);
     let k0_3 = u32(round(f32(t1.z) / nf * 16777216.0f));
     let r3 = (t1.z << 24u) - k0_3 * n3;
     let t14 = r3 << 1u;
@@ -244,11 +244,11 @@ fn unitpack_qtangent32_encode(n: vec3<f32>, t: vec4<f32>) -> u32 {
     let t18 = (f32(t17) * 4096.0f + f32(t16 & 0xfffu)) / (nf * 2.0f);
     let q0_3 = u32(floor(t18));
     let rest5 = t16 - q0_3 * two_n3;
-    let negative3 = !(rest5 < 0x80000000u);
+    let negative3 = !(0x80000000u > rest5);
     let t19 = vec3<bool>(
-        !(rest3 < two_n) && !negative,
-        !(rest4 < two_n2) && !negative2,
-        !(rest5 < two_n3) && !negative3
+        !(two_n > rest3) && !negative,
+        !(two_n2 > rest4) && !negative2,
+        !(two_n3 > rest5) && !negative3
     );
     let t20 = vec3<f32>(vec3<u32>(t7, t12, t17)) * 4096.0f
         + vec3<f32>((vec3<u32>(t4, t9, t14) + n3 + vec3<u32>(t5, t10, t15)) & vec3<u32>(0xfffu));
@@ -268,7 +268,7 @@ fn unitpack_qtangent32_encode(n: vec3<f32>, t: vec4<f32>) -> u32 {
             select(t25.z, t22.z, t19.z)
         );
     let t27 = t26 - 8u;
-    let t28 = vec3<u32>(0x1000000u) < t27;
+    let t28 = t27 > vec3<u32>(0x1000000u);
     let t29 = vec3<f32>(
         vec3<u32>(
             select(t27.x, (vec3<u32>(0x1000000u)).x, t28.x),
@@ -277,8 +277,8 @@ fn unitpack_qtangent32_encode(n: vec3<f32>, t: vec4<f32>) -> u32 {
         )
     )
         * 5.9604645e-8f;
-    let n4 = select(t29, -t29, w2 < vec3<f32>(0.0f)) * 16777216.0f;
-    let normal2 = select(t.xyz, vec3<f32>(0.0f), abs(t.xyz) < vec3<f32>(1.1754944e-38f));
+    let n4 = select(t29, -t29, vec3<f32>(0.0f) > w2) * 16777216.0f;
+    let normal2 = select(t.xyz, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(t.xyz));
     let abs_normal2 = abs(normal2);
     let larger2 = select(abs_normal2.y, abs_normal2.x, abs_normal2.x >= abs_normal2.y);
     let largest2 = select(abs_normal2.z, larger2, larger2 >= abs_normal2.z);
@@ -286,9 +286,9 @@ fn unitpack_qtangent32_encode(n: vec3<f32>, t: vec4<f32>) -> u32 {
     let scaled2 = normal2 * scale2;
     let abs_scaled2 = abs(scaled2);
     let sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    let sum_below_16_2 = sum2 < 16.0f;
+    let sum_below_16_2 = 16.0f > sum2;
     let ok2 = sum2 >= 2.0f && sum_below_16_2;
-    let w3 = select(scaled2, vec3<f32>(0.0f), abs(scaled2) < vec3<f32>(1.8189894e-12f));
+    let w3 = select(scaled2, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled2));
     let t30 = round(w3 * 2097152.0f);
     let t31 = round(t30.x * n4.x * 5.9604645e-8f) + round(t30.y * n4.y * 5.9604645e-8f);
     let along = t31 + round(t30.z * n4.z * 5.9604645e-8f);
@@ -300,7 +300,7 @@ fn unitpack_qtangent32_encode(n: vec3<f32>, t: vec4<f32>) -> u32 {
         abs(n4.y) > abs(n4.z)
     );
     let t33 = select(b1, g, t32);
-    let normal3 = select(t33, vec3<f32>(0.0f), abs(t33) < vec3<f32>(1.1754944e-38f));
+    let normal3 = select(t33, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(t33));
     let abs_normal3 = abs(normal3);
     let larger3 = select(abs_normal3.y, abs_normal3.x, abs_normal3.x >= abs_normal3.y);
     let largest3 = select(abs_normal3.z, larger3, larger3 >= abs_normal3.z);
@@ -308,9 +308,9 @@ fn unitpack_qtangent32_encode(n: vec3<f32>, t: vec4<f32>) -> u32 {
     let scaled3 = normal3 * scale3;
     let abs_scaled3 = abs(scaled3);
     let sum3 = abs_scaled3.x + abs_scaled3.y + abs_scaled3.z;
-    let sum_below_16_3 = sum3 < 16.0f;
+    let sum_below_16_3 = 16.0f > sum3;
     let ok3 = sum3 >= 2.0f && sum_below_16_3;
-    let w4 = select(scaled3, vec3<f32>(0.0f), abs(scaled3) < vec3<f32>(1.8189894e-12f));
+    let w4 = select(scaled3, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled3));
     let w5 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w4, ok3);
     let t34 = vec3<u32>(floor(abs(w5) * 2097152.0f));
     let limb1_4 = t34.x >> 12u;
@@ -351,15 +351,15 @@ fn unitpack_qtangent32_encode(n: vec3<f32>, t: vec4<f32>) -> u32 {
     let wide2 = (hi8 << 24u) + lo8;
     let rest6 = wide2 - t36 * t36 + 0x40000000u;
     let n5 = select(
-        select(t36, t36 - 1u, rest6 < 0x40000000u - t36 + 1u),
+        select(t36, t36 - 1u, 0x40000000u - t36 + 1u > rest6),
         t36 + 1u,
-        0x40000000u + t36 < rest6
+        rest6 > 0x40000000u + t36
     );
     let rest7 = wide2 - n5 * n5 + 0x40000000u;
     let n6 = select(
-        select(n5, n5 - 1u, rest7 < 0x40000000u - n5 + 1u),
+        select(n5, n5 - 1u, 0x40000000u - n5 + 1u > rest7),
         n5 + 1u,
-        0x40000000u + n5 < rest7
+        rest7 > 0x40000000u + n5
     );
     let nf2 = f32(n6);
     let k0_4 = u32(round(f32(t34.x) / nf2 * 16777216.0f));
@@ -372,7 +372,7 @@ fn unitpack_qtangent32_encode(n: vec3<f32>, t: vec4<f32>) -> u32 {
     let t41 = (f32(t40) * 4096.0f + f32(t39 & 0xfffu)) / (nf2 * 2.0f);
     let q0_4 = u32(floor(t41));
     let rest8 = t39 - q0_4 * two_n4;
-    let negative4 = !(rest8 < 0x80000000u);
+    let negative4 = !(0x80000000u > rest8);
     let k0_5 = u32(round(f32(t34.y) / nf2 * 16777216.0f));
     let r5 = (t34.y << 24u) - k0_5 * n6;
     let t42 = r5 << 1u;
@@ -383,7 +383,7 @@ fn unitpack_qtangent32_encode(n: vec3<f32>, t: vec4<f32>) -> u32 {
     let t46 = (f32(t45) * 4096.0f + f32(t44 & 0xfffu)) / (nf2 * 2.0f);
     let q0_5 = u32(floor(t46));
     let rest9 = t44 - q0_5 * two_n5;
-    let negative5 = !(rest9 < 0x80000000u);
+    let negative5 = !(0x80000000u > rest9);
     let k0_6 = u32(round(f32(t34.z) / nf2 * 16777216.0f));
     let r6 = (t34.z << 24u) - k0_6 * n6;
     let t47 = r6 << 1u;
@@ -394,11 +394,11 @@ fn unitpack_qtangent32_encode(n: vec3<f32>, t: vec4<f32>) -> u32 {
     let t51 = (f32(t50) * 4096.0f + f32(t49 & 0xfffu)) / (nf2 * 2.0f);
     let q0_6 = u32(floor(t51));
     let rest10 = t49 - q0_6 * two_n6;
-    let negative6 = !(rest10 < 0x80000000u);
+    let negative6 = !(0x80000000u > rest10);
     let t52 = vec3<bool>(
-        !(rest8 < two_n4) && !negative4,
-        !(rest9 < two_n5) && !negative5,
-        !(rest10 < two_n6) && !negative6
+        !(two_n4 > rest8) && !negative4,
+        !(two_n5 > rest9) && !negative5,
+        !(two_n6 > rest10) && !negative6
     );
     let t53 = vec3<f32>(vec3<u32>(t40, t45, t50)) * 4096.0f
         + vec3<f32>((vec3<u32>(t37, t42, t47) + n6 + vec3<u32>(t38, t43, t48)) & vec3<u32>(0xfffu));
@@ -418,7 +418,7 @@ fn unitpack_qtangent32_encode(n: vec3<f32>, t: vec4<f32>) -> u32 {
             select(t58.z, t55.z, t52.z)
         );
     let t60 = t59 - 8u;
-    let t61 = vec3<u32>(0x1000000u) < t60;
+    let t61 = t60 > vec3<u32>(0x1000000u);
     let t62 = vec3<f32>(
         vec3<u32>(
             select(t60.x, (vec3<u32>(0x1000000u)).x, t61.x),
@@ -427,7 +427,7 @@ fn unitpack_qtangent32_encode(n: vec3<f32>, t: vec4<f32>) -> u32 {
         )
     )
         * 5.9604645e-8f;
-    let tu = select(t62, -t62, w5 < vec3<f32>(0.0f)) * 16777216.0f;
+    let tu = select(t62, -t62, vec3<f32>(0.0f) > w5) * 16777216.0f;
     let b = round(n4.yzx * tu.zxy * 5.9604645e-8f) - round(n4.zxy * tu.yzx * 5.9604645e-8f);
     let t63 = round(tu * 0.25f);
     let t64 = round(b * 0.25f);
@@ -460,7 +460,7 @@ fn unitpack_qtangent32_encode(n: vec3<f32>, t: vec4<f32>) -> u32 {
     let big2 = big * big;
     let upper = estimate + 0.5f;
     let lower = estimate - 0.5f;
-    let step_down5 = select(0.0f, -1.0f, estimate > 0.0f && big2 < lower * lower * s);
+    let step_down5 = select(0.0f, -1.0f, estimate > 0.0f && lower * lower * s > big2);
     let nudge5 = select(step_down5, 1.0f, big2 >= upper * upper * s);
     let t76 = estimate + nudge5;
     let t77 = select(0.0f, t76, t76 >= 0.0f);
@@ -470,7 +470,7 @@ fn unitpack_qtangent32_encode(n: vec3<f32>, t: vec4<f32>) -> u32 {
     let big2_2 = big3 * big3;
     let upper2 = estimate2 + 0.5f;
     let lower2 = estimate2 - 0.5f;
-    let step_down6 = select(0.0f, -1.0f, estimate2 > 0.0f && big2_2 < lower2 * lower2 * s);
+    let step_down6 = select(0.0f, -1.0f, estimate2 > 0.0f && lower2 * lower2 * s > big2_2);
     let nudge6 = select(step_down6, 1.0f, big2_2 >= upper2 * upper2 * s);
     let t79 = estimate2 + nudge6;
     let t80 = select(0.0f, t79, t79 >= 0.0f);
@@ -480,16 +480,16 @@ fn unitpack_qtangent32_encode(n: vec3<f32>, t: vec4<f32>) -> u32 {
     let big2_3 = big4 * big4;
     let upper3 = estimate3 + 0.5f;
     let lower3 = estimate3 - 0.5f;
-    let step_down7 = select(0.0f, -1.0f, estimate3 > 0.0f && big2_3 < lower3 * lower3 * s);
+    let step_down7 = select(0.0f, -1.0f, estimate3 > 0.0f && lower3 * lower3 * s > big2_3);
     let nudge7 = select(step_down7, 1.0f, big2_3 >= upper3 * upper3 * s);
     let t82 = estimate3 + nudge7;
     let t83 = select(0.0f, t82, t82 >= 0.0f);
     let t84 = select(255.0f, t83, t83 <= 255.0f);
     let codes = vec4<f32>(
-        select(t78, -t78, t73 < 0.0f),
-        select(t81, -t81, t74 < 0.0f),
-        select(t84, -t84, t75 < 0.0f),
-        index3 + 4.0f * select(0.0f, 1.0f, select(1.0f, -1.0f, t.w < 0.0f) < 0.0f)
+        select(t78, -t78, 0.0f > t73),
+        select(t81, -t81, 0.0f > t74),
+        select(t84, -t84, 0.0f > t75),
+        index3 + 4.0f * select(0.0f, 1.0f, 0.0f > select(1.0f, -1.0f, 0.0f > t.w))
     );
     let t85 = (u32(codes.x + 1024.0f) & 0x3ffu) | ((u32(codes.y + 1024.0f) << 10u) & 0xffc00u);
     return t85 | ((u32(codes.z + 512.0f) << 20u) & 0x1ff00000u) | (u32(codes.w) << 29u);

@@ -52,7 +52,7 @@ fn unitpack_qtangent64_decode_float(q: vec4<f32>) -> unitpack_qtangent64_frame {
             1.0f - y2 * q.y - z2 * q.z,
             y2 * q.x + z2 * q.w,
             z2 * q.x - y2 * q.w,
-            select(1.0f, -1.0f, q.w < 0.0f)
+            select(1.0f, -1.0f, 0.0f > q.w)
         )
     );
 }
@@ -77,7 +77,7 @@ fn unitpack_qtangent64_decode(code: vec2<u32>) -> unitpack_qtangent64_frame {
             1.0f - y2 * q.y - z2 * q.z,
             y2 * q.x + z2 * q.w,
             z2 * q.x - y2 * q.w,
-            select(1.0f, -1.0f, q.w < 0.0f)
+            select(1.0f, -1.0f, 0.0f > q.w)
         )
     );
 }
@@ -104,7 +104,7 @@ fn unitpack_qtangent64_decode_tbn(code: vec2<u32>) -> unitpack_qtangent64_tbn {
         - vec3<f32>(t5, t3, t4) * vec3<f32>(t7, t8, t6);
     return unitpack_qtangent64_tbn(
         vec3<f32>(t6, t7, t8),
-        t9 * select(1.0f, -1.0f, q.w < 0.0f),
+        t9 * select(1.0f, -1.0f, 0.0f > q.w),
         vec3<f32>(t3, t4, t5)
     );
 }
@@ -121,7 +121,7 @@ fn unitpack_qtangent64_decode_tbn(code: vec2<u32>) -> unitpack_qtangent64_tbn {
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 fn unitpack_qtangent64_encode_float(n: vec3<f32>, t: vec4<f32>) -> vec4<f32> {
-    let t1 = select(1.0f, -1.0f, t.w < 0.0f) > 0.0f;
+    let t1 = select(1.0f, -1.0f, 0.0f > t.w) > 0.0f;
     let abs_n = abs(n);
     let t2 = select(abs_n.y, abs_n.x, abs_n.x >= abs_n.y);
     let largest = select(abs_n.z, t2, t2 >= abs_n.z);
@@ -141,7 +141,7 @@ fn unitpack_qtangent64_encode_float(n: vec3<f32>, t: vec4<f32>) -> vec4<f32> {
     let t8 = t7_sq.x + t7_sq.y + t7_sq.z;
     let n2_sq = n2 * n2;
     let t9 = n2 * (1.0f / sqrt(n2_sq.x + n2_sq.y + n2_sq.z));
-    let t10 = select(1.0f, -1.0f, t9.z < 0.0f);
+    let t10 = select(1.0f, -1.0f, 0.0f > t9.z);
     let t11 = -(1.0f / (t10 + t9.z));
     let t12 = t10 * t9.x;
     let t13 = vec3<f32>(1.0f + t12 * t9.x * t11, t12 * t9.y * t11, -t12);
@@ -181,10 +181,10 @@ fn unitpack_qtangent64_encode_float(n: vec3<f32>, t: vec4<f32>) -> vec4<f32> {
     let norm = sqrt(q_sq.x + q_sq.y + q_sq.z + q_sq.w);
     let t31 = !(norm == 0.0f);
     let t32 = select(vec4<f32>(0.0f, 0.0f, 0.0f, 1.0f), q / select(1.0f, norm, t31), t31);
-    let q2 = select(t32, -t32, t32.w < 0.0f);
-    let t33 = select(q2, vec4<f32>(q2.xyz, 3.051851e-5f), q2.w < 3.051851e-5f);
+    let q2 = select(t32, -t32, 0.0f > t32.w);
+    let t33 = select(q2, vec4<f32>(q2.xyz, 3.051851e-5f), 3.051851e-5f > q2.w);
     let t34 = (t15.y * n2.z - t15.z * n2.y) * b2.x + (t15.z * n2.x - t15.x * n2.z) * b2.y;
-    return select(t33, -t33, t34 + (t15.x * n2.y - t15.y * n2.x) * b2.z < 0.0f);
+    return select(t33, -t33, 0.0f > t34 + (t15.x * n2.y - t15.y * n2.x) * b2.z);
 }
 
 // unitpack_qtangent64_encode: fast encoder.
@@ -206,7 +206,7 @@ fn unitpack_qtangent64_encode(n: vec3<f32>, t: vec4<f32>) -> vec2<u32> {
     let floor_abs_t2 = floor(abs_t2);
     let t3 = floor_abs_t2
         + select(vec4<f32>(0.0f), vec4<f32>(1.0f), abs_t2 - floor_abs_t2 >= vec4<f32>(0.5f));
-    let codes = select(t3, -t3, t2 < vec4<f32>(0.0f));
+    let codes = select(t3, -t3, vec4<f32>(0.0f) > t2);
     let t4 = vec2<u32>(u32(codes.y + 65536.0f) << 16u, u32(codes.w + 65536.0f) << 16u);
     return (vec2<u32>(codes.xz + 65536.0f) & vec2<u32>(0xffffu)) | t4;
 }

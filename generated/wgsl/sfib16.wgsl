@@ -31,13 +31,13 @@ fn unitpack_sfib16_sincos_pi(t: f32) -> vec2<f32> {
     let t2 = (((-0.02580689f * c2 + 0.23533063f) * c2 + (-1.3352628f)) * c2 + 4.058712f) * c2;
     let co = (t2 + (-4.934802f)) * c2 + 1.0f;
     let t3 = select(vec2<f32>(s, co), vec2<f32>(co, s), swap);
-    return select(t3, -t3, vec2<bool>((t < 0.0f), back));
+    return select(t3, -t3, vec2<bool>(0.0f > t, back));
 }
 
 // The direction of point `i`: `z` from the index's distance to the nearer pole, `φ = 2π·frac(i·(Φ -
 //   1))` in 64-bit fixed point from 32-bit products.
 fn unitpack_sfib16_index_direction(i: u32) -> vec3<f32> {
-    let t1 = i < 0x8000u;
+    let t1 = 0x8000u > i;
     let k = select(0xffffu - i, i, t1);
     let fine = f32(k & 255u) * 3.051781e-5f;
     let u = f32(k >> 8u) * 0.00781256f + (7.629453e-6f + fine);
@@ -84,7 +84,7 @@ fn unitpack_sfib16_atan2_pi(x: f32, x1: f32) -> f32 {
     let abs_x = abs(x);
     let y_major = abs_x > abs_x1;
     let hi = select(abs_x1, abs_x, y_major);
-    let up = select(1.0f, 1.2676506e30f, hi < 7.888609e-31f);
+    let up = select(1.0f, 1.2676506e30f, 7.888609e-31f > hi);
     let hi2 = hi * up;
     let t = select(abs_x, abs_x1, y_major) * up / select(1.0f, hi2, hi2 > 0.0f);
     let far = t > 0.41421357f;
@@ -95,8 +95,8 @@ fn unitpack_sfib16_atan2_pi(x: f32, x1: f32) -> f32 {
     let r = z * ((t2 * z2 + (-0.33333334f)) * z2 + 1.0f);
     let r2 = select(r, r + 0.7853982f, far);
     let r3 = select(r2, 1.5707964f - r2, y_major);
-    let r4 = select(r3, 3.1415927f - r3, x1 < 0.0f);
-    return select(r4, -r4, x < 0.0f) * 0.31830987f;
+    let r4 = select(r3, 3.1415927f - r3, 0.0f > x1);
+    return select(r4, -r4, 0.0f > x) * 0.31830987f;
 }
 
 // (sin(π·t), cos(π·t)) in fixed point: `t` and the results in units of 2^-24, every product rounded
@@ -117,14 +117,14 @@ fn unitpack_sfib16_fixed_sincos_pi(t: f32) -> vec2<f32> {
     let t6 = (round((round(t5) + 699051.0f) * u2 * 5.9604645e-8f) + (-8388608.0f)) * u2;
     let co = round(t6 * 5.9604645e-8f) + 16777216.0f;
     let t7 = select(vec2<f32>(s, co), vec2<f32>(co, s), swap);
-    return select(t7, -t7, vec2<bool>((t < 0.0f), back));
+    return select(t7, -t7, vec2<bool>(0.0f > t, back));
 }
 
 // Point `i` in fixed point (units of 2^-21), its root decided by comparing squares and every
 //   product rounded or floored before a sum: a function of `i` alone, within a few units of the
 //   decoder's point.
 fn unitpack_sfib16_fixed_point(i: u32) -> vec3<f32> {
-    let t1 = i < 0x8000u;
+    let t1 = 0x8000u > i;
     let k = select(0xffffu - i, i, t1);
     let t2 = 0.25f + (f32(k >> 12u) * 4096.0f + f32(k & 0xfffu));
     let near = t2 * 3.051781e-5f;
@@ -163,7 +163,7 @@ fn unitpack_sfib16_fixed_point(i: u32) -> vec3<f32> {
 //   of their fixed-point decodes to the input's fixed-point direction, the lower index on ties, so
 //   that no rounding latitude of an implementation can change the code.
 fn unitpack_sfib16_encode_index(v: vec3<f32>) -> u32 {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -171,9 +171,9 @@ fn unitpack_sfib16_encode_index(v: vec3<f32>) -> u32 {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let fixed_f = floor(abs(w2.x) * 2097152.0f);
     let fixed2 = u32(fixed_f);
@@ -240,7 +240,7 @@ fn unitpack_sfib16_encode_index(v: vec3<f32>) -> u32 {
     let hi7 = hi6 + (lo6 >> 24u);
     let lo7 = lo6 & 0xffffffu;
     let rho2_fixed = (f32(hi7) * 16777216.0f + f32(lo7)) * 2.2737368e-13f;
-    let t6 = aim.z < 0.0f;
+    let t6 = 0.0f > aim.z;
     let below = rho2 / (1.0f + abs(u.z));
     let dz = 7.629453e-6f - below;
     let t = unitpack_sfib16_atan2_pi(u.y, u.x);
@@ -362,7 +362,7 @@ fn unitpack_sfib16_encode_index(v: vec3<f32>) -> u32 {
             );
     let t28 = u32(4194303.0f + round(t26)) * t24 + u32(4194303.0f + round(t27)) * t25;
     let corner = t28 - ((t24 + t25) << 22u);
-    let t29 = select(corner, 0xffffffffu - corner, 0xbfffffffu < corner);
+    let t29 = select(corner, 0xffffffffu - corner, corner > 0xbfffffffu);
     let t30 = select(t29, 0xffffu - t29, t6) & 0xffffu;
     let t31 = vec3<u32>(abs(unitpack_sfib16_fixed_point(t30) - aim));
     let limb1_6 = t31.x >> 12u;
@@ -384,7 +384,7 @@ fn unitpack_sfib16_encode_index(v: vec3<f32>) -> u32 {
     let lo11 = lo10 & 0xffffffu;
     let d = f32(hi11) * 16777216.0f + f32(lo11);
     let t32 = corner + t24;
-    let t33 = select(t32, 0xffffffffu - t32, 0xbfffffffu < t32);
+    let t33 = select(t32, 0xffffffffu - t32, t32 > 0xbfffffffu);
     let t34 = select(t33, 0xffffu - t33, t6) & 0xffffu;
     let t35 = vec3<u32>(abs(unitpack_sfib16_fixed_point(t34) - aim));
     let limb1_9 = t35.x >> 12u;
@@ -405,11 +405,11 @@ fn unitpack_sfib16_encode_index(v: vec3<f32>) -> u32 {
     let hi15 = hi14 + (lo14 >> 24u);
     let lo15 = lo14 & 0xffffffu;
     let d2 = f32(hi15) * 16777216.0f + f32(lo15);
-    let t36 = d2 < d || (d2 == d && t34 < t30);
+    let t36 = d > d2 || (d2 == d && t30 > t34);
     let t37 = select(d, d2, t36);
     let t38 = select(t30, t34, t36);
     let t39 = corner + t24 + t24;
-    let t40 = select(t39, 0xffffffffu - t39, 0xbfffffffu < t39);
+    let t40 = select(t39, 0xffffffffu - t39, t39 > 0xbfffffffu);
     let t41 = select(t40, 0xffffu - t40, t6) & 0xffffu;
     let t42 = vec3<u32>(abs(unitpack_sfib16_fixed_point(t41) - aim));
     let limb1_12 = t42.x >> 12u;
@@ -430,11 +430,11 @@ fn unitpack_sfib16_encode_index(v: vec3<f32>) -> u32 {
     let hi19 = hi18 + (lo18 >> 24u);
     let lo19 = lo18 & 0xffffffu;
     let d3 = f32(hi19) * 16777216.0f + f32(lo19);
-    let t43 = d3 < t37 || (d3 == t37 && t41 < t38);
+    let t43 = t37 > d3 || (d3 == t37 && t38 > t41);
     let t44 = select(t37, d3, t43);
     let t45 = select(t38, t41, t43);
     let t46 = corner + t25;
-    let t47 = select(t46, 0xffffffffu - t46, 0xbfffffffu < t46);
+    let t47 = select(t46, 0xffffffffu - t46, t46 > 0xbfffffffu);
     let t48 = select(t47, 0xffffu - t47, t6) & 0xffffu;
     let t49 = vec3<u32>(abs(unitpack_sfib16_fixed_point(t48) - aim));
     let limb1_15 = t49.x >> 12u;
@@ -455,11 +455,11 @@ fn unitpack_sfib16_encode_index(v: vec3<f32>) -> u32 {
     let hi23 = hi22 + (lo22 >> 24u);
     let lo23 = lo22 & 0xffffffu;
     let d4 = f32(hi23) * 16777216.0f + f32(lo23);
-    let t50 = d4 < t44 || (d4 == t44 && t48 < t45);
+    let t50 = t44 > d4 || (d4 == t44 && t45 > t48);
     let t51 = select(t44, d4, t50);
     let t52 = select(t45, t48, t50);
     let t53 = corner + t24 + t25;
-    let t54 = select(t53, 0xffffffffu - t53, 0xbfffffffu < t53);
+    let t54 = select(t53, 0xffffffffu - t53, t53 > 0xbfffffffu);
     let t55 = select(t54, 0xffffu - t54, t6) & 0xffffu;
     let t56 = vec3<u32>(abs(unitpack_sfib16_fixed_point(t55) - aim));
     let limb1_18 = t56.x >> 12u;
@@ -480,11 +480,11 @@ fn unitpack_sfib16_encode_index(v: vec3<f32>) -> u32 {
     let hi27 = hi26 + (lo26 >> 24u);
     let lo27 = lo26 & 0xffffffu;
     let d5 = f32(hi27) * 16777216.0f + f32(lo27);
-    let t57 = d5 < t51 || (d5 == t51 && t55 < t52);
+    let t57 = t51 > d5 || (d5 == t51 && t52 > t55);
     let t58 = select(t51, d5, t57);
     let t59 = select(t52, t55, t57);
     let t60 = corner + t24 + t24 + t25;
-    let t61 = select(t60, 0xffffffffu - t60, 0xbfffffffu < t60);
+    let t61 = select(t60, 0xffffffffu - t60, t60 > 0xbfffffffu);
     let t62 = select(t61, 0xffffu - t61, t6) & 0xffffu;
     let t63 = vec3<u32>(abs(unitpack_sfib16_fixed_point(t62) - aim));
     let limb1_21 = t63.x >> 12u;
@@ -505,11 +505,11 @@ fn unitpack_sfib16_encode_index(v: vec3<f32>) -> u32 {
     let hi31 = hi30 + (lo30 >> 24u);
     let lo31 = lo30 & 0xffffffu;
     let d6 = f32(hi31) * 16777216.0f + f32(lo31);
-    let t64 = d6 < t58 || (d6 == t58 && t62 < t59);
+    let t64 = t58 > d6 || (d6 == t58 && t59 > t62);
     let t65 = select(t58, d6, t64);
     let t66 = select(t59, t62, t64);
     let t67 = corner + t25 + t25;
-    let t68 = select(t67, 0xffffffffu - t67, 0xbfffffffu < t67);
+    let t68 = select(t67, 0xffffffffu - t67, t67 > 0xbfffffffu);
     let t69 = select(t68, 0xffffu - t68, t6) & 0xffffu;
     let t70 = vec3<u32>(abs(unitpack_sfib16_fixed_point(t69) - aim));
     let limb1_24 = t70.x >> 12u;
@@ -530,11 +530,11 @@ fn unitpack_sfib16_encode_index(v: vec3<f32>) -> u32 {
     let hi35 = hi34 + (lo34 >> 24u);
     let lo35 = lo34 & 0xffffffu;
     let d7 = f32(hi35) * 16777216.0f + f32(lo35);
-    let t71 = d7 < t65 || (d7 == t65 && t69 < t66);
+    let t71 = t65 > d7 || (d7 == t65 && t66 > t69);
     let t72 = select(t65, d7, t71);
     let t73 = select(t66, t69, t71);
     let t74 = corner + t24 + t25 + t25;
-    let t75 = select(t74, 0xffffffffu - t74, 0xbfffffffu < t74);
+    let t75 = select(t74, 0xffffffffu - t74, t74 > 0xbfffffffu);
     let t76 = select(t75, 0xffffu - t75, t6) & 0xffffu;
     let t77 = vec3<u32>(abs(unitpack_sfib16_fixed_point(t76) - aim));
     let limb1_27 = t77.x >> 12u;
@@ -555,11 +555,11 @@ fn unitpack_sfib16_encode_index(v: vec3<f32>) -> u32 {
     let hi39 = hi38 + (lo38 >> 24u);
     let lo39 = lo38 & 0xffffffu;
     let d8 = f32(hi39) * 16777216.0f + f32(lo39);
-    let t78 = d8 < t72 || (d8 == t72 && t76 < t73);
+    let t78 = t72 > d8 || (d8 == t72 && t73 > t76);
     let t79 = select(t72, d8, t78);
     let t80 = select(t73, t76, t78);
     let t81 = corner + t24 + t24 + t25 + t25;
-    let t82 = select(t81, 0xffffffffu - t81, 0xbfffffffu < t81);
+    let t82 = select(t81, 0xffffffffu - t81, t81 > 0xbfffffffu);
     let t83 = select(t82, 0xffffu - t82, t6) & 0xffffu;
     let t84 = vec3<u32>(abs(unitpack_sfib16_fixed_point(t83) - aim));
     let limb1_30 = t84.x >> 12u;
@@ -580,7 +580,7 @@ fn unitpack_sfib16_encode_index(v: vec3<f32>) -> u32 {
     let hi43 = hi42 + (lo42 >> 24u);
     let lo43 = lo42 & 0xffffffu;
     let d9 = f32(hi43) * 16777216.0f + f32(lo43);
-    return select(t80, t83, d9 < t79 || (d9 == t79 && t83 < t80));
+    return select(t80, t83, t79 > d9 || (d9 == t79 && t80 > t83));
 }
 
 // unitpack_sfib16_encode_float: fast encoder, float form.

@@ -31,13 +31,13 @@ fn unitpack_sfib24_sincos_pi(t: f32) -> vec2<f32> {
     let t2 = (((-0.02580689f * c2 + 0.23533063f) * c2 + (-1.3352628f)) * c2 + 4.058712f) * c2;
     let co = (t2 + (-4.934802f)) * c2 + 1.0f;
     let t3 = select(vec2<f32>(s, co), vec2<f32>(co, s), swap);
-    return select(t3, -t3, vec2<bool>((t < 0.0f), back));
+    return select(t3, -t3, vec2<bool>(0.0f > t, back));
 }
 
 // The direction of point `i`: `z` from the index's distance to the nearer pole, `φ = 2π·frac(i·(Φ -
 //   1))` in 64-bit fixed point from 32-bit products.
 fn unitpack_sfib24_index_direction(i: u32) -> vec3<f32> {
-    let t1 = i < 0x800000u;
+    let t1 = 0x800000u > i;
     let k = select(0xffffffu - i, i, t1);
     let fine = f32(k & 255u) * 1.1920929e-7f;
     let u = f32(k >> 8u) * 3.0517578e-5f + (2.9802322e-8f + fine);
@@ -84,7 +84,7 @@ fn unitpack_sfib24_atan2_pi(x: f32, x1: f32) -> f32 {
     let abs_x = abs(x);
     let y_major = abs_x > abs_x1;
     let hi = select(abs_x1, abs_x, y_major);
-    let up = select(1.0f, 1.2676506e30f, hi < 7.888609e-31f);
+    let up = select(1.0f, 1.2676506e30f, 7.888609e-31f > hi);
     let hi2 = hi * up;
     let t = select(abs_x, abs_x1, y_major) * up / select(1.0f, hi2, hi2 > 0.0f);
     let far = t > 0.41421357f;
@@ -95,8 +95,8 @@ fn unitpack_sfib24_atan2_pi(x: f32, x1: f32) -> f32 {
     let r = z * ((t2 * z2 + (-0.33333334f)) * z2 + 1.0f);
     let r2 = select(r, r + 0.7853982f, far);
     let r3 = select(r2, 1.5707964f - r2, y_major);
-    let r4 = select(r3, 3.1415927f - r3, x1 < 0.0f);
-    return select(r4, -r4, x < 0.0f) * 0.31830987f;
+    let r4 = select(r3, 3.1415927f - r3, 0.0f > x1);
+    return select(r4, -r4, 0.0f > x) * 0.31830987f;
 }
 
 // (sin(π·t), cos(π·t)) in fixed point: `t` and the results in units of 2^-24, every product rounded
@@ -117,14 +117,14 @@ fn unitpack_sfib24_fixed_sincos_pi(t: f32) -> vec2<f32> {
     let t6 = (round((round(t5) + 699051.0f) * u2 * 5.9604645e-8f) + (-8388608.0f)) * u2;
     let co = round(t6 * 5.9604645e-8f) + 16777216.0f;
     let t7 = select(vec2<f32>(s, co), vec2<f32>(co, s), swap);
-    return select(t7, -t7, vec2<bool>((t < 0.0f), back));
+    return select(t7, -t7, vec2<bool>(0.0f > t, back));
 }
 
 // Point `i` in fixed point (units of 2^-21), its root decided by comparing squares and every
 //   product rounded or floored before a sum: a function of `i` alone, within a few units of the
 //   decoder's point.
 fn unitpack_sfib24_fixed_point(i: u32) -> vec3<f32> {
-    let t1 = i < 0x800000u;
+    let t1 = 0x800000u > i;
     let k = select(0xffffffu - i, i, t1);
     let t2 = 0.25f + (f32(k >> 12u) * 4096.0f + f32(k & 0xfffu));
     let near = t2 * 1.1920929e-7f;
@@ -163,7 +163,7 @@ fn unitpack_sfib24_fixed_point(i: u32) -> vec3<f32> {
 //   of their fixed-point decodes to the input's fixed-point direction, the lower index on ties, so
 //   that no rounding latitude of an implementation can change the code.
 fn unitpack_sfib24_encode_index(v: vec3<f32>) -> u32 {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -171,9 +171,9 @@ fn unitpack_sfib24_encode_index(v: vec3<f32>) -> u32 {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let fixed_f = floor(abs(w2.x) * 2097152.0f);
     let fixed2 = u32(fixed_f);
@@ -240,7 +240,7 @@ fn unitpack_sfib24_encode_index(v: vec3<f32>) -> u32 {
     let hi7 = hi6 + (lo6 >> 24u);
     let lo7 = lo6 & 0xffffffu;
     let rho2_fixed = (f32(hi7) * 16777216.0f + f32(lo7)) * 2.2737368e-13f;
-    let t6 = aim.z < 0.0f;
+    let t6 = 0.0f > aim.z;
     let below = rho2 / (1.0f + abs(u.z));
     let dz = 2.9802322e-8f - below;
     let t = unitpack_sfib24_atan2_pi(u.y, u.x);
@@ -458,7 +458,7 @@ fn unitpack_sfib24_encode_index(v: vec3<f32>) -> u32 {
         + dz * select(select(select(t32, -2349.0918f, t33), -1451.8186f, t34), -897.27325f, t35);
     let t40 = u32(4194303.0f + round(t38)) * t36 + u32(4194303.0f + round(t39)) * t37;
     let corner = t40 - ((t36 + t37) << 22u);
-    let t41 = select(corner, 0xffffffffu - corner, 0xbfffffffu < corner);
+    let t41 = select(corner, 0xffffffffu - corner, corner > 0xbfffffffu);
     let t42 = select(t41, 0xffffffu - t41, t6) & 0xffffffu;
     let t43 = vec3<u32>(abs(unitpack_sfib24_fixed_point(t42) - aim));
     let limb1_6 = t43.x >> 12u;
@@ -480,7 +480,7 @@ fn unitpack_sfib24_encode_index(v: vec3<f32>) -> u32 {
     let lo11 = lo10 & 0xffffffu;
     let d = f32(hi11) * 16777216.0f + f32(lo11);
     let t44 = corner + t36;
-    let t45 = select(t44, 0xffffffffu - t44, 0xbfffffffu < t44);
+    let t45 = select(t44, 0xffffffffu - t44, t44 > 0xbfffffffu);
     let t46 = select(t45, 0xffffffu - t45, t6) & 0xffffffu;
     let t47 = vec3<u32>(abs(unitpack_sfib24_fixed_point(t46) - aim));
     let limb1_9 = t47.x >> 12u;
@@ -501,11 +501,11 @@ fn unitpack_sfib24_encode_index(v: vec3<f32>) -> u32 {
     let hi15 = hi14 + (lo14 >> 24u);
     let lo15 = lo14 & 0xffffffu;
     let d2 = f32(hi15) * 16777216.0f + f32(lo15);
-    let t48 = d2 < d || (d2 == d && t46 < t42);
+    let t48 = d > d2 || (d2 == d && t42 > t46);
     let t49 = select(d, d2, t48);
     let t50 = select(t42, t46, t48);
     let t51 = corner + t36 + t36;
-    let t52 = select(t51, 0xffffffffu - t51, 0xbfffffffu < t51);
+    let t52 = select(t51, 0xffffffffu - t51, t51 > 0xbfffffffu);
     let t53 = select(t52, 0xffffffu - t52, t6) & 0xffffffu;
     let t54 = vec3<u32>(abs(unitpack_sfib24_fixed_point(t53) - aim));
     let limb1_12 = t54.x >> 12u;
@@ -526,11 +526,11 @@ fn unitpack_sfib24_encode_index(v: vec3<f32>) -> u32 {
     let hi19 = hi18 + (lo18 >> 24u);
     let lo19 = lo18 & 0xffffffu;
     let d3 = f32(hi19) * 16777216.0f + f32(lo19);
-    let t55 = d3 < t49 || (d3 == t49 && t53 < t50);
+    let t55 = t49 > d3 || (d3 == t49 && t50 > t53);
     let t56 = select(t49, d3, t55);
     let t57 = select(t50, t53, t55);
     let t58 = corner + t37;
-    let t59 = select(t58, 0xffffffffu - t58, 0xbfffffffu < t58);
+    let t59 = select(t58, 0xffffffffu - t58, t58 > 0xbfffffffu);
     let t60 = select(t59, 0xffffffu - t59, t6) & 0xffffffu;
     let t61 = vec3<u32>(abs(unitpack_sfib24_fixed_point(t60) - aim));
     let limb1_15 = t61.x >> 12u;
@@ -551,11 +551,11 @@ fn unitpack_sfib24_encode_index(v: vec3<f32>) -> u32 {
     let hi23 = hi22 + (lo22 >> 24u);
     let lo23 = lo22 & 0xffffffu;
     let d4 = f32(hi23) * 16777216.0f + f32(lo23);
-    let t62 = d4 < t56 || (d4 == t56 && t60 < t57);
+    let t62 = t56 > d4 || (d4 == t56 && t57 > t60);
     let t63 = select(t56, d4, t62);
     let t64 = select(t57, t60, t62);
     let t65 = corner + t36 + t37;
-    let t66 = select(t65, 0xffffffffu - t65, 0xbfffffffu < t65);
+    let t66 = select(t65, 0xffffffffu - t65, t65 > 0xbfffffffu);
     let t67 = select(t66, 0xffffffu - t66, t6) & 0xffffffu;
     let t68 = vec3<u32>(abs(unitpack_sfib24_fixed_point(t67) - aim));
     let limb1_18 = t68.x >> 12u;
@@ -576,11 +576,11 @@ fn unitpack_sfib24_encode_index(v: vec3<f32>) -> u32 {
     let hi27 = hi26 + (lo26 >> 24u);
     let lo27 = lo26 & 0xffffffu;
     let d5 = f32(hi27) * 16777216.0f + f32(lo27);
-    let t69 = d5 < t63 || (d5 == t63 && t67 < t64);
+    let t69 = t63 > d5 || (d5 == t63 && t64 > t67);
     let t70 = select(t63, d5, t69);
     let t71 = select(t64, t67, t69);
     let t72 = corner + t36 + t36 + t37;
-    let t73 = select(t72, 0xffffffffu - t72, 0xbfffffffu < t72);
+    let t73 = select(t72, 0xffffffffu - t72, t72 > 0xbfffffffu);
     let t74 = select(t73, 0xffffffu - t73, t6) & 0xffffffu;
     let t75 = vec3<u32>(abs(unitpack_sfib24_fixed_point(t74) - aim));
     let limb1_21 = t75.x >> 12u;
@@ -601,11 +601,11 @@ fn unitpack_sfib24_encode_index(v: vec3<f32>) -> u32 {
     let hi31 = hi30 + (lo30 >> 24u);
     let lo31 = lo30 & 0xffffffu;
     let d6 = f32(hi31) * 16777216.0f + f32(lo31);
-    let t76 = d6 < t70 || (d6 == t70 && t74 < t71);
+    let t76 = t70 > d6 || (d6 == t70 && t71 > t74);
     let t77 = select(t70, d6, t76);
     let t78 = select(t71, t74, t76);
     let t79 = corner + t37 + t37;
-    let t80 = select(t79, 0xffffffffu - t79, 0xbfffffffu < t79);
+    let t80 = select(t79, 0xffffffffu - t79, t79 > 0xbfffffffu);
     let t81 = select(t80, 0xffffffu - t80, t6) & 0xffffffu;
     let t82 = vec3<u32>(abs(unitpack_sfib24_fixed_point(t81) - aim));
     let limb1_24 = t82.x >> 12u;
@@ -626,11 +626,11 @@ fn unitpack_sfib24_encode_index(v: vec3<f32>) -> u32 {
     let hi35 = hi34 + (lo34 >> 24u);
     let lo35 = lo34 & 0xffffffu;
     let d7 = f32(hi35) * 16777216.0f + f32(lo35);
-    let t83 = d7 < t77 || (d7 == t77 && t81 < t78);
+    let t83 = t77 > d7 || (d7 == t77 && t78 > t81);
     let t84 = select(t77, d7, t83);
     let t85 = select(t78, t81, t83);
     let t86 = corner + t36 + t37 + t37;
-    let t87 = select(t86, 0xffffffffu - t86, 0xbfffffffu < t86);
+    let t87 = select(t86, 0xffffffffu - t86, t86 > 0xbfffffffu);
     let t88 = select(t87, 0xffffffu - t87, t6) & 0xffffffu;
     let t89 = vec3<u32>(abs(unitpack_sfib24_fixed_point(t88) - aim));
     let limb1_27 = t89.x >> 12u;
@@ -651,11 +651,11 @@ fn unitpack_sfib24_encode_index(v: vec3<f32>) -> u32 {
     let hi39 = hi38 + (lo38 >> 24u);
     let lo39 = lo38 & 0xffffffu;
     let d8 = f32(hi39) * 16777216.0f + f32(lo39);
-    let t90 = d8 < t84 || (d8 == t84 && t88 < t85);
+    let t90 = t84 > d8 || (d8 == t84 && t85 > t88);
     let t91 = select(t84, d8, t90);
     let t92 = select(t85, t88, t90);
     let t93 = corner + t36 + t36 + t37 + t37;
-    let t94 = select(t93, 0xffffffffu - t93, 0xbfffffffu < t93);
+    let t94 = select(t93, 0xffffffffu - t93, t93 > 0xbfffffffu);
     let t95 = select(t94, 0xffffffu - t94, t6) & 0xffffffu;
     let t96 = vec3<u32>(abs(unitpack_sfib24_fixed_point(t95) - aim));
     let limb1_30 = t96.x >> 12u;
@@ -676,7 +676,7 @@ fn unitpack_sfib24_encode_index(v: vec3<f32>) -> u32 {
     let hi43 = hi42 + (lo42 >> 24u);
     let lo43 = lo42 & 0xffffffu;
     let d9 = f32(hi43) * 16777216.0f + f32(lo43);
-    return select(t92, t95, d9 < t91 || (d9 == t91 && t95 < t92));
+    return select(t92, t95, t91 > d9 || (d9 == t91 && t92 > t95));
 }
 
 // unitpack_sfib24_encode_float: fast encoder, float form.

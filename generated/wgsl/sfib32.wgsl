@@ -31,13 +31,13 @@ fn unitpack_sfib32_sincos_pi(t: f32) -> vec2<f32> {
     let t2 = (((-0.02580689f * c2 + 0.23533063f) * c2 + (-1.3352628f)) * c2 + 4.058712f) * c2;
     let co = (t2 + (-4.934802f)) * c2 + 1.0f;
     let t3 = select(vec2<f32>(s, co), vec2<f32>(co, s), swap);
-    return select(t3, -t3, vec2<bool>((t < 0.0f), back));
+    return select(t3, -t3, vec2<bool>(0.0f > t, back));
 }
 
 // The direction of point `i`: `z` from the index's distance to the nearer pole, `φ = 2π·frac(i·(Φ -
 //   1))` in 64-bit fixed point from 32-bit products.
 fn unitpack_sfib32_index_direction(i: u32) -> vec3<f32> {
-    let t1 = i < 0x80000000u;
+    let t1 = 0x80000000u > i;
     let k = select(0xffffffffu - i, i, t1);
     let fine = f32(k & 255u) * 4.656613e-10f;
     let u = f32(k >> 8u) * 1.1920929e-7f + (1.1641532e-10f + fine);
@@ -84,7 +84,7 @@ fn unitpack_sfib32_atan2_pi(x: f32, x1: f32) -> f32 {
     let abs_x = abs(x);
     let y_major = abs_x > abs_x1;
     let hi = select(abs_x1, abs_x, y_major);
-    let up = select(1.0f, 1.2676506e30f, hi < 7.888609e-31f);
+    let up = select(1.0f, 1.2676506e30f, 7.888609e-31f > hi);
     let hi2 = hi * up;
     let t = select(abs_x, abs_x1, y_major) * up / select(1.0f, hi2, hi2 > 0.0f);
     let far = t > 0.41421357f;
@@ -95,8 +95,8 @@ fn unitpack_sfib32_atan2_pi(x: f32, x1: f32) -> f32 {
     let r = z * ((t2 * z2 + (-0.33333334f)) * z2 + 1.0f);
     let r2 = select(r, r + 0.7853982f, far);
     let r3 = select(r2, 1.5707964f - r2, y_major);
-    let r4 = select(r3, 3.1415927f - r3, x1 < 0.0f);
-    return select(r4, -r4, x < 0.0f) * 0.31830987f;
+    let r4 = select(r3, 3.1415927f - r3, 0.0f > x1);
+    return select(r4, -r4, 0.0f > x) * 0.31830987f;
 }
 
 // (sin(π·t), cos(π·t)) in fixed point: `t` and the results in units of 2^-24, every product rounded
@@ -117,14 +117,14 @@ fn unitpack_sfib32_fixed_sincos_pi(t: f32) -> vec2<f32> {
     let t6 = (round((round(t5) + 699051.0f) * u2 * 5.9604645e-8f) + (-8388608.0f)) * u2;
     let co = round(t6 * 5.9604645e-8f) + 16777216.0f;
     let t7 = select(vec2<f32>(s, co), vec2<f32>(co, s), swap);
-    return select(t7, -t7, vec2<bool>((t < 0.0f), back));
+    return select(t7, -t7, vec2<bool>(0.0f > t, back));
 }
 
 // Point `i` in fixed point (units of 2^-21), its root decided by comparing squares and every
 //   product rounded or floored before a sum: a function of `i` alone, within a few units of the
 //   decoder's point.
 fn unitpack_sfib32_fixed_point(i: u32) -> vec3<f32> {
-    let t1 = i < 0x80000000u;
+    let t1 = 0x80000000u > i;
     let k = select(0xffffffffu - i, i, t1);
     let t2 = 0.25f + (f32(k >> 12u) * 4096.0f + f32(k & 0xfffu));
     let near = t2 * 4.656613e-10f;
@@ -163,7 +163,7 @@ fn unitpack_sfib32_fixed_point(i: u32) -> vec3<f32> {
 //   of their fixed-point decodes to the input's fixed-point direction, the lower index on ties, so
 //   that no rounding latitude of an implementation can change the code.
 fn unitpack_sfib32_encode_index(v: vec3<f32>) -> u32 {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -171,9 +171,9 @@ fn unitpack_sfib32_encode_index(v: vec3<f32>) -> u32 {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let fixed_f = floor(abs(w2.x) * 2097152.0f);
     let fixed2 = u32(fixed_f);
@@ -240,7 +240,7 @@ fn unitpack_sfib32_encode_index(v: vec3<f32>) -> u32 {
     let hi7 = hi6 + (lo6 >> 24u);
     let lo7 = lo6 & 0xffffffu;
     let rho2_fixed = (f32(hi7) * 16777216.0f + f32(lo7)) * 2.2737368e-13f;
-    let t6 = aim.z < 0.0f;
+    let t6 = 0.0f > aim.z;
     let below = rho2 / (1.0f + abs(u.z));
     let dz = 1.1641532e-10f - below;
     let t = unitpack_sfib32_atan2_pi(u.y, u.x);
@@ -570,7 +570,7 @@ fn unitpack_sfib32_encode_index(v: vec3<f32>) -> u32 {
         + dz * select(select(t45, -20712.209f, t46), -12800.861f, t47);
     let t52 = u32(4194303.0f + round(t50)) * t48 + u32(4194303.0f + round(t51)) * t49;
     let corner = t52 - ((t48 + t49) << 22u);
-    let t53 = select(corner, 0xffffffffu - corner, 0xbfffffffu < corner);
+    let t53 = select(corner, 0xffffffffu - corner, corner > 0xbfffffffu);
     let t54 = select(t53, 0xffffffffu - t53, t6) & 0xffffffffu;
     let t55 = vec3<u32>(abs(unitpack_sfib32_fixed_point(t54) - aim));
     let limb1_6 = t55.x >> 12u;
@@ -592,7 +592,7 @@ fn unitpack_sfib32_encode_index(v: vec3<f32>) -> u32 {
     let lo11 = lo10 & 0xffffffu;
     let d = f32(hi11) * 16777216.0f + f32(lo11);
     let t56 = corner + t48;
-    let t57 = select(t56, 0xffffffffu - t56, 0xbfffffffu < t56);
+    let t57 = select(t56, 0xffffffffu - t56, t56 > 0xbfffffffu);
     let t58 = select(t57, 0xffffffffu - t57, t6) & 0xffffffffu;
     let t59 = vec3<u32>(abs(unitpack_sfib32_fixed_point(t58) - aim));
     let limb1_9 = t59.x >> 12u;
@@ -613,11 +613,11 @@ fn unitpack_sfib32_encode_index(v: vec3<f32>) -> u32 {
     let hi15 = hi14 + (lo14 >> 24u);
     let lo15 = lo14 & 0xffffffu;
     let d2 = f32(hi15) * 16777216.0f + f32(lo15);
-    let t60 = d2 < d || (d2 == d && t58 < t54);
+    let t60 = d > d2 || (d2 == d && t54 > t58);
     let t61 = select(d, d2, t60);
     let t62 = select(t54, t58, t60);
     let t63 = corner + t48 + t48;
-    let t64 = select(t63, 0xffffffffu - t63, 0xbfffffffu < t63);
+    let t64 = select(t63, 0xffffffffu - t63, t63 > 0xbfffffffu);
     let t65 = select(t64, 0xffffffffu - t64, t6) & 0xffffffffu;
     let t66 = vec3<u32>(abs(unitpack_sfib32_fixed_point(t65) - aim));
     let limb1_12 = t66.x >> 12u;
@@ -638,11 +638,11 @@ fn unitpack_sfib32_encode_index(v: vec3<f32>) -> u32 {
     let hi19 = hi18 + (lo18 >> 24u);
     let lo19 = lo18 & 0xffffffu;
     let d3 = f32(hi19) * 16777216.0f + f32(lo19);
-    let t67 = d3 < t61 || (d3 == t61 && t65 < t62);
+    let t67 = t61 > d3 || (d3 == t61 && t62 > t65);
     let t68 = select(t61, d3, t67);
     let t69 = select(t62, t65, t67);
     let t70 = corner + t49;
-    let t71 = select(t70, 0xffffffffu - t70, 0xbfffffffu < t70);
+    let t71 = select(t70, 0xffffffffu - t70, t70 > 0xbfffffffu);
     let t72 = select(t71, 0xffffffffu - t71, t6) & 0xffffffffu;
     let t73 = vec3<u32>(abs(unitpack_sfib32_fixed_point(t72) - aim));
     let limb1_15 = t73.x >> 12u;
@@ -663,11 +663,11 @@ fn unitpack_sfib32_encode_index(v: vec3<f32>) -> u32 {
     let hi23 = hi22 + (lo22 >> 24u);
     let lo23 = lo22 & 0xffffffu;
     let d4 = f32(hi23) * 16777216.0f + f32(lo23);
-    let t74 = d4 < t68 || (d4 == t68 && t72 < t69);
+    let t74 = t68 > d4 || (d4 == t68 && t69 > t72);
     let t75 = select(t68, d4, t74);
     let t76 = select(t69, t72, t74);
     let t77 = corner + t48 + t49;
-    let t78 = select(t77, 0xffffffffu - t77, 0xbfffffffu < t77);
+    let t78 = select(t77, 0xffffffffu - t77, t77 > 0xbfffffffu);
     let t79 = select(t78, 0xffffffffu - t78, t6) & 0xffffffffu;
     let t80 = vec3<u32>(abs(unitpack_sfib32_fixed_point(t79) - aim));
     let limb1_18 = t80.x >> 12u;
@@ -688,11 +688,11 @@ fn unitpack_sfib32_encode_index(v: vec3<f32>) -> u32 {
     let hi27 = hi26 + (lo26 >> 24u);
     let lo27 = lo26 & 0xffffffu;
     let d5 = f32(hi27) * 16777216.0f + f32(lo27);
-    let t81 = d5 < t75 || (d5 == t75 && t79 < t76);
+    let t81 = t75 > d5 || (d5 == t75 && t76 > t79);
     let t82 = select(t75, d5, t81);
     let t83 = select(t76, t79, t81);
     let t84 = corner + t48 + t48 + t49;
-    let t85 = select(t84, 0xffffffffu - t84, 0xbfffffffu < t84);
+    let t85 = select(t84, 0xffffffffu - t84, t84 > 0xbfffffffu);
     let t86 = select(t85, 0xffffffffu - t85, t6) & 0xffffffffu;
     let t87 = vec3<u32>(abs(unitpack_sfib32_fixed_point(t86) - aim));
     let limb1_21 = t87.x >> 12u;
@@ -713,11 +713,11 @@ fn unitpack_sfib32_encode_index(v: vec3<f32>) -> u32 {
     let hi31 = hi30 + (lo30 >> 24u);
     let lo31 = lo30 & 0xffffffu;
     let d6 = f32(hi31) * 16777216.0f + f32(lo31);
-    let t88 = d6 < t82 || (d6 == t82 && t86 < t83);
+    let t88 = t82 > d6 || (d6 == t82 && t83 > t86);
     let t89 = select(t82, d6, t88);
     let t90 = select(t83, t86, t88);
     let t91 = corner + t49 + t49;
-    let t92 = select(t91, 0xffffffffu - t91, 0xbfffffffu < t91);
+    let t92 = select(t91, 0xffffffffu - t91, t91 > 0xbfffffffu);
     let t93 = select(t92, 0xffffffffu - t92, t6) & 0xffffffffu;
     let t94 = vec3<u32>(abs(unitpack_sfib32_fixed_point(t93) - aim));
     let limb1_24 = t94.x >> 12u;
@@ -738,11 +738,11 @@ fn unitpack_sfib32_encode_index(v: vec3<f32>) -> u32 {
     let hi35 = hi34 + (lo34 >> 24u);
     let lo35 = lo34 & 0xffffffu;
     let d7 = f32(hi35) * 16777216.0f + f32(lo35);
-    let t95 = d7 < t89 || (d7 == t89 && t93 < t90);
+    let t95 = t89 > d7 || (d7 == t89 && t90 > t93);
     let t96 = select(t89, d7, t95);
     let t97 = select(t90, t93, t95);
     let t98 = corner + t48 + t49 + t49;
-    let t99 = select(t98, 0xffffffffu - t98, 0xbfffffffu < t98);
+    let t99 = select(t98, 0xffffffffu - t98, t98 > 0xbfffffffu);
     let t100 = select(t99, 0xffffffffu - t99, t6) & 0xffffffffu;
     let t101 = vec3<u32>(abs(unitpack_sfib32_fixed_point(t100) - aim));
     let limb1_27 = t101.x >> 12u;
@@ -763,11 +763,11 @@ fn unitpack_sfib32_encode_index(v: vec3<f32>) -> u32 {
     let hi39 = hi38 + (lo38 >> 24u);
     let lo39 = lo38 & 0xffffffu;
     let d8 = f32(hi39) * 16777216.0f + f32(lo39);
-    let t102 = d8 < t96 || (d8 == t96 && t100 < t97);
+    let t102 = t96 > d8 || (d8 == t96 && t97 > t100);
     let t103 = select(t96, d8, t102);
     let t104 = select(t97, t100, t102);
     let t105 = corner + t48 + t48 + t49 + t49;
-    let t106 = select(t105, 0xffffffffu - t105, 0xbfffffffu < t105);
+    let t106 = select(t105, 0xffffffffu - t105, t105 > 0xbfffffffu);
     let t107 = select(t106, 0xffffffffu - t106, t6) & 0xffffffffu;
     let t108 = vec3<u32>(abs(unitpack_sfib32_fixed_point(t107) - aim));
     let limb1_30 = t108.x >> 12u;
@@ -788,7 +788,7 @@ fn unitpack_sfib32_encode_index(v: vec3<f32>) -> u32 {
     let hi43 = hi42 + (lo42 >> 24u);
     let lo43 = lo42 & 0xffffffu;
     let d9 = f32(hi43) * 16777216.0f + f32(lo43);
-    return select(t104, t107, d9 < t103 || (d9 == t103 && t107 < t104));
+    return select(t104, t107, t103 > d9 || (d9 == t103 && t104 > t107));
 }
 
 // unitpack_sfib32_encode_float: fast encoder, float form.

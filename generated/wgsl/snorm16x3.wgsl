@@ -64,7 +64,7 @@ fn unitpack_snorm16x3_encode_float(v: vec3<f32>) -> vec3<f32> {
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 fn unitpack_snorm16x3_round_codes(v: vec3<f32>) -> vec3<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -72,9 +72,9 @@ fn unitpack_snorm16x3_round_codes(v: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let split_hi = bitcast<f32>(bitcast<u32>(w.x) & 0xfffff000u);
     let split_lo = w.x - split_hi;
     let split_hi2 = bitcast<f32>(bitcast<u32>(w.y) & 0xfffff000u);
@@ -105,9 +105,9 @@ fn unitpack_snorm16x3_round_codes(v: vec3<f32>) -> vec3<f32> {
     let t3 = round(t2 / sqrt(vec3<f32>(len2)));
     let t4 = t3 + 0.5f;
     let t5 = vec3<bool>(
-        (estimate > 0.0f && big2 < lower * lower * len2),
-        (estimate2 > 0.0f && big2_2 < lower2 * lower2 * len2),
-        estimate3 > 0.0f && big2_3 < lower3 * lower3 * len2
+        estimate > 0.0f && lower * lower * len2 > big2,
+        estimate2 > 0.0f && lower2 * lower2 * len2 > big2_2,
+        estimate3 > 0.0f && lower3 * lower3 * len2 > big2_3
     );
     let t6 = t3
         + select(
@@ -117,7 +117,7 @@ fn unitpack_snorm16x3_round_codes(v: vec3<f32>) -> vec3<f32> {
         );
     let t7 = select(vec3<f32>(0.0f), t6, t6 >= vec3<f32>(0.0f));
     let t8 = select(vec3<f32>(32767.0f), t7, t7 <= vec3<f32>(32767.0f));
-    return select(vec3<f32>(0.0f, 0.0f, 32767.0f), select(t8, -t8, w < vec3<f32>(0.0f)), ok);
+    return select(vec3<f32>(0.0f, 0.0f, 32767.0f), select(t8, -t8, vec3<f32>(0.0f) > w), ok);
 }
 
 // unitpack_snorm16x3_encode: fast encoder.

@@ -122,7 +122,7 @@ fn unitpack_snorm16x3p_bfn_step(
     let hi8 = hi7 + (lo7 >> 24u);
     let lo8 = lo7 & 0xffffffu;
     let dist = f32(hi8) * 16777216.0f + f32(lo8);
-    return select(best, vec2<f32>(t, dist), dist < best.y);
+    return select(best, vec2<f32>(t, dist), best.y > dist);
 }
 
 // Best Fit Normals: among the codes whose largest component is one of at most 64 of the scales
@@ -130,7 +130,7 @@ fn unitpack_snorm16x3p_bfn_step(
 //   one whose direction (computed in units of 2^-21, every quotient and root decided by
 //   comparisons) is nearest the input's by exact squared distance, the largest scale on ties.
 fn unitpack_snorm16x3p_encode_codes(v: vec3<f32>) -> vec3<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -138,9 +138,9 @@ fn unitpack_snorm16x3p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let fixed_f = floor(abs(w2.x) * 2097152.0f);
     let fixed2 = u32(fixed_f);
@@ -266,7 +266,7 @@ fn unitpack_snorm16x3p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let best63 = unitpack_snorm16x3p_bfn_step(best62, 32705.0f, r, aim);
     let best64 = unitpack_snorm16x3p_bfn_step(best63, 32704.0f, r, aim);
     let c = round(r * 4.7683716e-7f * best64.xxx);
-    return select(c, -c, aim < vec3<f32>(0.0f));
+    return select(c, -c, vec3<f32>(0.0f) > aim);
 }
 
 // unitpack_snorm16x3p_encode_float: precise encoder, float form.

@@ -48,7 +48,7 @@ fn unitpack_spheremap32p_optimized_decode(code: u32) -> vec3<f32> {
 //   comparisons or rounded to a unit) is nearest the input's by exact squared distance, the first
 //   on ties.
 fn unitpack_spheremap32p_optimized_encode_codes(v: vec3<f32>) -> vec2<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -56,9 +56,9 @@ fn unitpack_spheremap32p_optimized_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let fixed_f = floor(abs(w2.x) * 2097152.0f);
     let fixed2 = u32(fixed_f);
@@ -135,7 +135,7 @@ fn unitpack_spheremap32p_optimized_encode_codes(v: vec3<f32>) -> vec2<f32> {
         select(
             vec2<f32>(0.0f),
             select(vec2<f32>(0.0f), vec2<f32>(1.0f), t10 <= t11),
-            t9 < vec2<f32>(0.0f)
+            vec2<f32>(0.0f) > t9
         ),
         select(
             vec2<f32>(1.0f),
@@ -150,7 +150,7 @@ fn unitpack_spheremap32p_optimized_encode_codes(v: vec3<f32>) -> vec2<f32> {
         select(
             vec2<f32>(0.0f),
             select(vec2<f32>(0.0f), vec2<f32>(1.0f), t10 <= t14),
-            t13 < vec2<f32>(0.0f)
+            vec2<f32>(0.0f) > t13
         ),
         select(
             vec2<f32>(1.0f),
@@ -160,7 +160,7 @@ fn unitpack_spheremap32p_optimized_encode_codes(v: vec3<f32>) -> vec2<f32> {
         t3.xy >= vec2<f32>(0.0f)
     );
     let base = t8
-        + select(vec2<f32>(0.0f), t12, t8 < vec2<f32>(65535.0f))
+        + select(vec2<f32>(0.0f), t12, vec2<f32>(65535.0f) > t8)
         + select(vec2<f32>(0.0f), t15 - 1.0f, t8 > vec2<f32>(0.0f));
     let t16 = floor(t3 / t4 * 2097152.0f);
     let t17 = t3 * 2097152.0f;
@@ -174,7 +174,7 @@ fn unitpack_spheremap32p_optimized_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let t = cand * 2.0f - 65535.0f;
     let t19 = vec2<u32>(abs(t));
     let t20 = ((t19.x * t19.x) >> 2u) + ((t19.y * t19.y) >> 2u);
-    let t21 = select(0u, ((0x3fff7fffu - t20) << 2u) + 3u, !(0x3fff7fffu < t20));
+    let t21 = select(0u, ((0x3fff7fffu - t20) << 2u) + 3u, !(t20 > 0x3fff7fffu));
     let r = f32(t21 >> 12u) * 4096.0f + f32(t21 & 0xfffu);
     let t22 = r * 256.01563f;
     let root_estimate2 = floor(sqrt(t22));
@@ -214,7 +214,7 @@ fn unitpack_spheremap32p_optimized_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let t25 = cand2 * 2.0f - 65535.0f;
     let t26 = vec2<u32>(abs(t25));
     let t27 = ((t26.x * t26.x) >> 2u) + ((t26.y * t26.y) >> 2u);
-    let t28 = select(0u, ((0x3fff7fffu - t27) << 2u) + 3u, !(0x3fff7fffu < t27));
+    let t28 = select(0u, ((0x3fff7fffu - t27) << 2u) + 3u, !(t27 > 0x3fff7fffu));
     let r2 = f32(t28 >> 12u) * 4096.0f + f32(t28 & 0xfffu);
     let t29 = r2 * 256.01563f;
     let root_estimate3 = floor(sqrt(t29));
@@ -247,7 +247,7 @@ fn unitpack_spheremap32p_optimized_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let hi15 = hi14 + (lo14 >> 24u);
     let lo15 = lo14 & 0xffffffu;
     let dist2 = f32(hi15) * 16777216.0f + f32(lo15);
-    let t31 = s_up <= 65535.0f && base.y <= 65535.0f && dist2 < dist;
+    let t31 = s_up <= 65535.0f && base.y <= 65535.0f && dist > dist2;
     let best = select(cand, cand2, t31);
     let best_d = select(dist, dist2, t31);
     let t32 = vec2<f32>(base.x, t_up);
@@ -255,7 +255,7 @@ fn unitpack_spheremap32p_optimized_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let t33 = cand3 * 2.0f - 65535.0f;
     let t34 = vec2<u32>(abs(t33));
     let t35 = ((t34.x * t34.x) >> 2u) + ((t34.y * t34.y) >> 2u);
-    let t36 = select(0u, ((0x3fff7fffu - t35) << 2u) + 3u, !(0x3fff7fffu < t35));
+    let t36 = select(0u, ((0x3fff7fffu - t35) << 2u) + 3u, !(t35 > 0x3fff7fffu));
     let r3 = f32(t36 >> 12u) * 4096.0f + f32(t36 & 0xfffu);
     let t37 = r3 * 256.01563f;
     let root_estimate4 = floor(sqrt(t37));
@@ -288,7 +288,7 @@ fn unitpack_spheremap32p_optimized_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let hi19 = hi18 + (lo18 >> 24u);
     let lo19 = lo18 & 0xffffffu;
     let dist3 = f32(hi19) * 16777216.0f + f32(lo19);
-    let t39 = base.x <= 65535.0f && t_up <= 65535.0f && dist3 < best_d;
+    let t39 = base.x <= 65535.0f && t_up <= 65535.0f && best_d > dist3;
     let best2 = select(best, cand3, t39);
     let best_d2 = select(best_d, dist3, t39);
     let t40 = base + 1.0f;
@@ -296,7 +296,7 @@ fn unitpack_spheremap32p_optimized_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let t41 = cand4 * 2.0f - 65535.0f;
     let t42 = vec2<u32>(abs(t41));
     let t43 = ((t42.x * t42.x) >> 2u) + ((t42.y * t42.y) >> 2u);
-    let t44 = select(0u, ((0x3fff7fffu - t43) << 2u) + 3u, !(0x3fff7fffu < t43));
+    let t44 = select(0u, ((0x3fff7fffu - t43) << 2u) + 3u, !(t43 > 0x3fff7fffu));
     let r4 = f32(t44 >> 12u) * 4096.0f + f32(t44 & 0xfffu);
     let t45 = r4 * 256.01563f;
     let root_estimate5 = floor(sqrt(t45));
@@ -329,7 +329,7 @@ fn unitpack_spheremap32p_optimized_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let hi23 = hi22 + (lo22 >> 24u);
     let lo23 = lo22 & 0xffffffu;
     let dist4 = f32(hi23) * 16777216.0f + f32(lo23);
-    let best3 = select(best2, cand4, s_up <= 65535.0f && t_up <= 65535.0f && dist4 < best_d2);
+    let best3 = select(best2, cand4, s_up <= 65535.0f && t_up <= 65535.0f && best_d2 > dist4);
     return select(
         vec2<f32>(32768.0f),
         select(best3, vec2<f32>(65535.0f, 32768.0f), opz_a <= 0.0f),

@@ -31,7 +31,7 @@ fn unitpack_spherical20p_sincos_pi(theta: f32) -> vec2<f32> {
     let t2 = (((-0.02580689f * c2 + 0.23533063f) * c2 + (-1.3352628f)) * c2 + 4.058712f) * c2;
     let co = (t2 + (-4.934802f)) * c2 + 1.0f;
     let t3 = select(vec2<f32>(s, co), vec2<f32>(co, s), swap);
-    return select(t3, -t3, vec2<bool>((theta < 0.0f), back));
+    return select(t3, -t3, vec2<bool>(0.0f > theta, back));
 }
 
 // unitpack_spherical20p_decode_float: decoder, float form.
@@ -64,7 +64,7 @@ fn unitpack_spherical20p_decode(code: u32) -> vec3<f32> {
 //   comparisons or rounded to a unit) is nearest the input's by exact squared distance, the first
 //   on ties.
 fn unitpack_spherical20p_encode_codes(v: vec3<f32>) -> vec2<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -72,9 +72,9 @@ fn unitpack_spherical20p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let fixed_f = floor(abs(w2.x) * 2097152.0f);
     let fixed2 = u32(fixed_f);
@@ -152,8 +152,8 @@ fn unitpack_spherical20p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let h = round(r * 0.31830987f);
     let h2 = select(h, h + 2097152.0f, far);
     let h3 = select(h2, 4194304.0f - h2, y_major);
-    let h4 = select(h3, 8388608.0f - h3, w2.z < 0.0f);
-    let angle = select(h4, -h4, rho < 0.0f);
+    let h4 = select(h3, 8388608.0f - h3, 0.0f > w2.z);
+    let angle = select(h4, -h4, 0.0f > rho);
     let abs_w2_x = abs(w2.x);
     let abs_w2_y = abs(w2.y);
     let y_major2 = abs_w2_y > abs_w2_x;
@@ -193,8 +193,8 @@ fn unitpack_spherical20p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let h5 = round(r2 * 0.31830987f);
     let h6 = select(h5, h5 + 2097152.0f, far2);
     let h7 = select(h6, 4194304.0f - h6, y_major2);
-    let h8 = select(h7, 8388608.0f - h7, w2.x < 0.0f);
-    let phi = select(h8, -h8, w2.y < 0.0f);
+    let h8 = select(h7, 8388608.0f - h7, 0.0f > w2.x);
+    let phi = select(h8, -h8, 0.0f > w2.y);
     let theta = angle * 2.0f - 8388608.0f;
     let base = floor(vec2<f32>(theta, phi) * 6.0915947e-5f);
     let fixed_f3 = floor(abs(w2.x) * 2097152.0f);
@@ -269,7 +269,7 @@ fn unitpack_spherical20p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let co = round(t32 * 5.9604645e-8f) + 16777216.0f;
     let t33 = select(s, co, swap);
     let t34 = select(co, s, swap);
-    let t35 = select(t33, -t33, t26 < 0.0f);
+    let t35 = select(t33, -t33, 0.0f > t26);
     let t36 = round(cand.y * 32832.125f);
     let abs_t36 = abs(t36);
     let back2 = abs_t36 > 8388608.0f;
@@ -289,7 +289,7 @@ fn unitpack_spherical20p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let t44 = select(co2, s2, swap2);
     let t45 = vec3<f32>(
         select(t44, -t44, back2) * t35,
-        select(t43, -t43, t36 < 0.0f) * t35,
+        select(t43, -t43, 0.0f > t36) * t35,
         select(t34, -t34, back)
     );
     let offset = round(t45 * vec3<f32>(2.9802322e-8f, 2.9802322e-8f, 0.5f)) - aim;
@@ -333,7 +333,7 @@ fn unitpack_spherical20p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let co3 = round(t53 * 5.9604645e-8f) + 16777216.0f;
     let t54 = select(s3, co3, swap3);
     let t55 = select(co3, s3, swap3);
-    let t56 = select(t54, -t54, t47 < 0.0f);
+    let t56 = select(t54, -t54, 0.0f > t47);
     let t57 = round(cand2.y * 32832.125f);
     let abs_t57 = abs(t57);
     let back4 = abs_t57 > 8388608.0f;
@@ -353,7 +353,7 @@ fn unitpack_spherical20p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let t65 = select(co4, s4, swap4);
     let t66 = vec3<f32>(
         select(t65, -t65, back4) * t56,
-        select(t64, -t64, t57 < 0.0f) * t56,
+        select(t64, -t64, 0.0f > t57) * t56,
         select(t55, -t55, back3)
     );
     let offset2 = round(t66 * vec3<f32>(2.9802322e-8f, 2.9802322e-8f, 0.5f)) - aim;
@@ -376,7 +376,7 @@ fn unitpack_spherical20p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let hi17 = hi16 + (lo16 >> 24u);
     let lo17 = lo16 & 0xffffffu;
     let dist2 = f32(hi17) * 16777216.0f + f32(lo17);
-    let t67 = s_up <= 511.0f && base.y <= 511.0f && dist2 < dist;
+    let t67 = s_up <= 511.0f && base.y <= 511.0f && dist > dist2;
     let best = select(cand, cand2, t67);
     let best_d = select(dist, dist2, t67);
     let t68 = vec2<f32>(base.x, t_up);
@@ -398,7 +398,7 @@ fn unitpack_spherical20p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let co5 = round(t75 * 5.9604645e-8f) + 16777216.0f;
     let t76 = select(s5, co5, swap5);
     let t77 = select(co5, s5, swap5);
-    let t78 = select(t76, -t76, t69 < 0.0f);
+    let t78 = select(t76, -t76, 0.0f > t69);
     let t79 = round(cand3.y * 32832.125f);
     let abs_t79 = abs(t79);
     let back6 = abs_t79 > 8388608.0f;
@@ -418,7 +418,7 @@ fn unitpack_spherical20p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let t87 = select(co6, s6, swap6);
     let t88 = vec3<f32>(
         select(t87, -t87, back6) * t78,
-        select(t86, -t86, t79 < 0.0f) * t78,
+        select(t86, -t86, 0.0f > t79) * t78,
         select(t77, -t77, back5)
     );
     let offset3 = round(t88 * vec3<f32>(2.9802322e-8f, 2.9802322e-8f, 0.5f)) - aim;
@@ -441,7 +441,7 @@ fn unitpack_spherical20p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let hi21 = hi20 + (lo20 >> 24u);
     let lo21 = lo20 & 0xffffffu;
     let dist3 = f32(hi21) * 16777216.0f + f32(lo21);
-    let t89 = base.x <= 511.0f && t_up <= 511.0f && dist3 < best_d;
+    let t89 = base.x <= 511.0f && t_up <= 511.0f && best_d > dist3;
     let best2 = select(best, cand3, t89);
     let best_d2 = select(best_d, dist3, t89);
     let t90 = base + 1.0f;
@@ -463,7 +463,7 @@ fn unitpack_spherical20p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let co7 = round(t97 * 5.9604645e-8f) + 16777216.0f;
     let t98 = select(s7, co7, swap7);
     let t99 = select(co7, s7, swap7);
-    let t100 = select(t98, -t98, t91 < 0.0f);
+    let t100 = select(t98, -t98, 0.0f > t91);
     let t101 = round(cand4.y * 32832.125f);
     let abs_t101 = abs(t101);
     let back8 = abs_t101 > 8388608.0f;
@@ -485,7 +485,7 @@ fn unitpack_spherical20p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let t109 = select(co8, s8, swap8);
     let t110 = vec3<f32>(
         select(t109, -t109, back8) * t100,
-        select(t108, -t108, t101 < 0.0f) * t100,
+        select(t108, -t108, 0.0f > t101) * t100,
         select(t99, -t99, back7)
     );
     let offset4 = round(t110 * vec3<f32>(2.9802322e-8f, 2.9802322e-8f, 0.5f)) - aim;
@@ -508,7 +508,7 @@ fn unitpack_spherical20p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let hi25 = hi24 + (lo24 >> 24u);
     let lo25 = lo24 & 0xffffffu;
     let dist4 = f32(hi25) * 16777216.0f + f32(lo25);
-    let best3 = select(best2, cand4, s_up <= 511.0f && t_up <= 511.0f && dist4 < best_d2);
+    let best3 = select(best2, cand4, s_up <= 511.0f && t_up <= 511.0f && best_d2 > dist4);
     return best3;
 }
 

@@ -31,7 +31,7 @@ fn unitpack_spherical32_sincos_pi(theta: f32) -> vec2<f32> {
     let t2 = (((-0.02580689f * c2 + 0.23533063f) * c2 + (-1.3352628f)) * c2 + 4.058712f) * c2;
     let co = (t2 + (-4.934802f)) * c2 + 1.0f;
     let t3 = select(vec2<f32>(s, co), vec2<f32>(co, s), swap);
-    return select(t3, -t3, vec2<bool>((theta < 0.0f), back));
+    return select(t3, -t3, vec2<bool>(0.0f > theta, back));
 }
 
 // unitpack_spherical32_decode_float: decoder, float form.
@@ -66,7 +66,7 @@ fn unitpack_spherical32_atan2_pi(rho: f32, x: f32) -> f32 {
     let abs_rho = abs(rho);
     let y_major = abs_rho > abs_x;
     let hi = select(abs_x, abs_rho, y_major);
-    let up = select(1.0f, 1.2676506e30f, hi < 7.888609e-31f);
+    let up = select(1.0f, 1.2676506e30f, 7.888609e-31f > hi);
     let hi2 = hi * up;
     let t = select(abs_rho, abs_x, y_major) * up / select(1.0f, hi2, hi2 > 0.0f);
     let far = t > 0.41421357f;
@@ -77,8 +77,8 @@ fn unitpack_spherical32_atan2_pi(rho: f32, x: f32) -> f32 {
     let r = z * ((t2 * z2 + (-0.33333334f)) * z2 + 1.0f);
     let r2 = select(r, r + 0.7853982f, far);
     let r3 = select(r2, 1.5707964f - r2, y_major);
-    let r4 = select(r3, 3.1415927f - r3, x < 0.0f);
-    return select(r4, -r4, rho < 0.0f) * 0.31830987f;
+    let r4 = select(r3, 3.1415927f - r3, 0.0f > x);
+    return select(r4, -r4, 0.0f > rho) * 0.31830987f;
 }
 
 // unitpack_spherical32_encode_float: fast encoder, float form.
@@ -106,7 +106,7 @@ fn unitpack_spherical32_encode_float(v: vec3<f32>) -> vec2<f32> {
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 fn unitpack_spherical32_round_codes(v: vec3<f32>) -> vec2<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -114,9 +114,9 @@ fn unitpack_spherical32_round_codes(v: vec3<f32>) -> vec2<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let fixed_f = floor(abs(w2.x) * 2097152.0f);
     let fixed2 = u32(fixed_f);
@@ -194,8 +194,8 @@ fn unitpack_spherical32_round_codes(v: vec3<f32>) -> vec2<f32> {
     let h = round(r * 0.31830987f);
     let h2 = select(h, h + 2097152.0f, far);
     let h3 = select(h2, 4194304.0f - h2, y_major);
-    let h4 = select(h3, 8388608.0f - h3, w2.z < 0.0f);
-    let angle = select(h4, -h4, rho < 0.0f);
+    let h4 = select(h3, 8388608.0f - h3, 0.0f > w2.z);
+    let angle = select(h4, -h4, 0.0f > rho);
     let abs_w2_x = abs(w2.x);
     let abs_w2_y = abs(w2.y);
     let y_major2 = abs_w2_y > abs_w2_x;
@@ -235,8 +235,8 @@ fn unitpack_spherical32_round_codes(v: vec3<f32>) -> vec2<f32> {
     let h5 = round(r2 * 0.31830987f);
     let h6 = select(h5, h5 + 2097152.0f, far2);
     let h7 = select(h6, 4194304.0f - h6, y_major2);
-    let h8 = select(h7, 8388608.0f - h7, w2.x < 0.0f);
-    let phi = select(h8, -h8, w2.y < 0.0f);
+    let h8 = select(h7, 8388608.0f - h7, 0.0f > w2.x);
+    let phi = select(h8, -h8, 0.0f > w2.y);
     let theta = angle * 2.0f - 8388608.0f;
     return round(vec2<f32>(theta, phi) * 0.0039061308f);
 }

@@ -45,7 +45,7 @@ fn unitpack_spherical_lut16_matched_sincos_texel(code: u32) -> vec2<u32> {
 //   decided exactly (the same texel on every implementation). Sample at (t + ½)/256 for the same
 //   texel through a nearest sampler.
 fn unitpack_spherical_lut16_matched_atan_texel(v: vec3<f32>) -> vec2<u32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -53,9 +53,9 @@ fn unitpack_spherical_lut16_matched_atan_texel(v: vec3<f32>) -> vec2<u32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let split_hi = bitcast<f32>(bitcast<u32>(w2.x) & 0xfffff000u);
     let split_lo = w2.x - split_hi;
@@ -81,7 +81,7 @@ fn unitpack_spherical_lut16_matched_atan_texel(v: vec3<f32>) -> vec2<u32> {
         select(
             vec2<f32>(0.0f),
             select(vec2<f32>(0.0f), vec2<f32>(1.0f), t6 <= t7),
-            t5 < vec2<f32>(0.0f)
+            vec2<f32>(0.0f) > t5
         ),
         select(
             vec2<f32>(1.0f),
@@ -96,7 +96,7 @@ fn unitpack_spherical_lut16_matched_atan_texel(v: vec3<f32>) -> vec2<u32> {
         select(
             vec2<f32>(0.0f),
             select(vec2<f32>(0.0f), vec2<f32>(1.0f), t6 <= t10),
-            t9 < vec2<f32>(0.0f)
+            vec2<f32>(0.0f) > t9
         ),
         select(
             vec2<f32>(1.0f),
@@ -106,7 +106,7 @@ fn unitpack_spherical_lut16_matched_atan_texel(v: vec3<f32>) -> vec2<u32> {
         w2.xy >= vec2<f32>(0.0f)
     );
     let t12 = t4
-        + select(vec2<f32>(0.0f), t8, t4 < vec2<f32>(255.0f))
+        + select(vec2<f32>(0.0f), t8, vec2<f32>(255.0f) > t4)
         + select(vec2<f32>(0.0f), t11 - 1.0f, t4 > vec2<f32>(0.0f));
     return vec2<u32>(t12);
 }
@@ -137,7 +137,7 @@ fn unitpack_spherical_lut16_matched_encode_float(v: vec3<f32>, fetched: f32) -> 
 // Portable (as the header says): the same code on every such implementation; denormal input
 //   components count as zero.
 fn unitpack_spherical_lut16_matched_encode(v: vec3<f32>, fetched: f32) -> u32 {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -145,9 +145,9 @@ fn unitpack_spherical_lut16_matched_encode(v: vec3<f32>, fetched: f32) -> u32 {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let split_hi = bitcast<f32>(bitcast<u32>(w2.x) & 0xfffff000u);
     let split_lo = w2.x - split_hi;
@@ -174,15 +174,15 @@ fn unitpack_spherical_lut16_matched_encode(v: vec3<f32>, fetched: f32) -> u32 {
     let one_if2 = select(0.0f, 1.0f, big2 <= t6);
     let up = select(
         0.0f,
-        select(select(0.0f, one_if2, t5 < 0.0f), select(1.0f, one_if, t5 > 0.0f), w2.z >= 0.0f),
-        estimate < 255.0f
+        select(select(0.0f, one_if2, 0.0f > t5), select(1.0f, one_if, t5 > 0.0f), w2.z >= 0.0f),
+        255.0f > estimate
     );
     let t7 = estimate - 1.0f - 127.0f;
     let t8 = t7 * t7 * len2;
     let one_if3 = select(0.0f, 1.0f, big2 >= t8);
     let one_if4 = select(0.0f, 1.0f, big2 <= t8);
     let t9 = select(
-        select(0.0f, one_if4, t7 < 0.0f),
+        select(0.0f, one_if4, 0.0f > t7),
         select(1.0f, one_if3, t7 > 0.0f),
         w2.z >= 0.0f
     )

@@ -45,7 +45,7 @@ fn unitpack_spherical_lut16p_sincos_texel(code: u32) -> vec2<u32> {
 //   decided exactly (the same texel on every implementation). Sample at (t + ½)/256 for the same
 //   texel through a nearest sampler.
 fn unitpack_spherical_lut16p_atan_texel(v: vec3<f32>) -> vec2<u32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -53,9 +53,9 @@ fn unitpack_spherical_lut16p_atan_texel(v: vec3<f32>) -> vec2<u32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let split_hi = bitcast<f32>(bitcast<u32>(w2.x) & 0xfffff000u);
     let split_lo = w2.x - split_hi;
@@ -81,7 +81,7 @@ fn unitpack_spherical_lut16p_atan_texel(v: vec3<f32>) -> vec2<u32> {
         select(
             vec2<f32>(0.0f),
             select(vec2<f32>(0.0f), vec2<f32>(1.0f), t6 <= t7),
-            t5 < vec2<f32>(0.0f)
+            vec2<f32>(0.0f) > t5
         ),
         select(
             vec2<f32>(1.0f),
@@ -96,7 +96,7 @@ fn unitpack_spherical_lut16p_atan_texel(v: vec3<f32>) -> vec2<u32> {
         select(
             vec2<f32>(0.0f),
             select(vec2<f32>(0.0f), vec2<f32>(1.0f), t6 <= t10),
-            t9 < vec2<f32>(0.0f)
+            vec2<f32>(0.0f) > t9
         ),
         select(
             vec2<f32>(1.0f),
@@ -106,7 +106,7 @@ fn unitpack_spherical_lut16p_atan_texel(v: vec3<f32>) -> vec2<u32> {
         w2.xy >= vec2<f32>(0.0f)
     );
     let t12 = t4
-        + select(vec2<f32>(0.0f), t8, t4 < vec2<f32>(255.0f))
+        + select(vec2<f32>(0.0f), t8, vec2<f32>(255.0f) > t4)
         + select(vec2<f32>(0.0f), t11 - 1.0f, t4 > vec2<f32>(0.0f));
     return vec2<u32>(t12);
 }
@@ -119,7 +119,7 @@ fn unitpack_spherical_lut16p_atan_texel(v: vec3<f32>) -> vec2<u32> {
 // Portable (as the header says): the same code on every such implementation; denormal input
 //   components count as zero.
 fn unitpack_spherical_lut16p_encode_fast(v: vec3<f32>, fetched: f32) -> u32 {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -127,9 +127,9 @@ fn unitpack_spherical_lut16p_encode_fast(v: vec3<f32>, fetched: f32) -> u32 {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let split_hi = bitcast<f32>(bitcast<u32>(w2.x) & 0xfffff000u);
     let split_lo = w2.x - split_hi;
@@ -156,15 +156,15 @@ fn unitpack_spherical_lut16p_encode_fast(v: vec3<f32>, fetched: f32) -> u32 {
     let one_if2 = select(0.0f, 1.0f, big2 <= t6);
     let up = select(
         0.0f,
-        select(select(0.0f, one_if2, t5 < 0.0f), select(1.0f, one_if, t5 > 0.0f), w2.z >= 0.0f),
-        estimate < 255.0f
+        select(select(0.0f, one_if2, 0.0f > t5), select(1.0f, one_if, t5 > 0.0f), w2.z >= 0.0f),
+        255.0f > estimate
     );
     let t7 = estimate - 1.0f - 127.0f;
     let t8 = t7 * t7 * len2;
     let one_if3 = select(0.0f, 1.0f, big2 >= t8);
     let one_if4 = select(0.0f, 1.0f, big2 <= t8);
     let t9 = select(
-        select(0.0f, one_if4, t7 < 0.0f),
+        select(0.0f, one_if4, 0.0f > t7),
         select(1.0f, one_if3, t7 > 0.0f),
         w2.z >= 0.0f
     )
@@ -180,11 +180,11 @@ fn unitpack_spherical_lut16p_encode_fast(v: vec3<f32>, fetched: f32) -> u32 {
 //   (the azimuth is periodic), y clamped to [0, 255]. Row by row; k = 4 is the code itself. The
 //   candidate's code is the texel's x | y << 8.
 fn unitpack_spherical_lut16p_precise_texel(code: u32, k: u32) -> vec2<u32> {
-    let t1 = select(8u, k, k < 9u);
-    let t2 = select(select(2u, 1u, t1 < 6u), 0u, t1 < 3u);
+    let t1 = select(8u, k, 9u > k);
+    let t2 = select(select(2u, 1u, 6u > t1), 0u, 3u > t1);
     let t3 = ((code >> 8u) & 255u) + t2;
-    let t4 = select(t3, 1u, t3 < 1u) - 1u;
-    return vec2<u32>(((code & 255u) + (t1 - t2 * 3u) + 255u) & 255u, select(255u, t4, t4 < 0x100u));
+    let t4 = select(t3, 1u, 1u > t3) - 1u;
+    return vec2<u32>(((code & 255u) + (t1 - t2 * 3u) + 255u) & 255u, select(255u, t4, 0x100u > t4));
 }
 
 // unitpack_spherical_lut16p_encode: precise encoder.
@@ -210,7 +210,7 @@ fn unitpack_spherical_lut16p_encode(
     s7: vec3<f32>,
     s8: vec3<f32>
 ) -> u32 {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -218,11 +218,11 @@ fn unitpack_spherical_lut16p_encode(
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
-    let t1 = w2 < vec3<f32>(0.0f);
+    let t1 = vec3<f32>(0.0f) > w2;
     let t2 = vec3<u32>(floor(abs(w2) * 4096.0f));
     let t3 = 0u - t2;
     let afix = vec3<u32>(
@@ -235,7 +235,7 @@ fn unitpack_spherical_lut16p_encode(
     let t6 = vec3<u32>(round(select(vec3<f32>(1.0f), t5, t5 <= vec3<f32>(1.0f)) * 255.0f));
     let t7 = t6 + t6 - 255u;
     let axd = afix.yzx * t7.zxy - afix.zxy * t7.yzx;
-    let t8 = axd < vec3<u32>(0x80000000u);
+    let t8 = vec3<u32>(0x80000000u) > axd;
     let t9 = 0u - axd;
     let t10 = vec3<u32>(
         select(t9.x, axd.x, t8.x),
@@ -262,13 +262,13 @@ fn unitpack_spherical_lut16p_encode(
     let e = f32(hi4) * 16777216.0f + f32(lo4);
     let n = f32(t7.x * t7.x + t7.y * t7.y + t7.z * t7.z);
     let t11 = ((code >> 8u) & 255u) + 0u;
-    let t12 = select(t11, 1u, t11 < 1u) - 1u;
-    let t13 = (((code & 255u) + 0u + 255u) & 255u) | (select(255u, t12, t12 < 0x100u) << 8u);
+    let t12 = select(t11, 1u, 1u > t11) - 1u;
+    let t13 = (((code & 255u) + 0u + 255u) & 255u) | (select(255u, t12, 0x100u > t12) << 8u);
     let t14 = select(vec3<f32>(0.0f), s0, s0 >= vec3<f32>(0.0f));
     let t15 = vec3<u32>(round(select(vec3<f32>(1.0f), t14, t14 <= vec3<f32>(1.0f)) * 255.0f));
     let t16 = t15 + t15 - 255u;
     let axd2 = afix.yzx * t16.zxy - afix.zxy * t16.yzx;
-    let t17 = axd2 < vec3<u32>(0x80000000u);
+    let t17 = vec3<u32>(0x80000000u) > axd2;
     let t18 = 0u - axd2;
     let t19 = vec3<u32>(
         select(t18.x, axd2.x, t17.x),
@@ -294,18 +294,18 @@ fn unitpack_spherical_lut16p_encode(
     let lo8 = lo7 & 0xffffffu;
     let e2 = f32(hi8) * 16777216.0f + f32(lo8);
     let n2 = f32(t16.x * t16.x + t16.y * t16.y + t16.z * t16.z);
-    let t20 = e2 * n < e * n2;
+    let t20 = e * n2 > e2 * n;
     let best = select(t4, t13, t20);
     let best_e = select(e, e2, t20);
     let best_n = select(n, n2, t20);
     let t21 = ((code >> 8u) & 255u) + 0u;
-    let t22 = select(t21, 1u, t21 < 1u) - 1u;
-    let t23 = (((code & 255u) + 1u + 255u) & 255u) | (select(255u, t22, t22 < 0x100u) << 8u);
+    let t22 = select(t21, 1u, 1u > t21) - 1u;
+    let t23 = (((code & 255u) + 1u + 255u) & 255u) | (select(255u, t22, 0x100u > t22) << 8u);
     let t24 = select(vec3<f32>(0.0f), s1, s1 >= vec3<f32>(0.0f));
     let t25 = vec3<u32>(round(select(vec3<f32>(1.0f), t24, t24 <= vec3<f32>(1.0f)) * 255.0f));
     let t26 = t25 + t25 - 255u;
     let axd3 = afix.yzx * t26.zxy - afix.zxy * t26.yzx;
-    let t27 = axd3 < vec3<u32>(0x80000000u);
+    let t27 = vec3<u32>(0x80000000u) > axd3;
     let t28 = 0u - axd3;
     let t29 = vec3<u32>(
         select(t28.x, axd3.x, t27.x),
@@ -331,18 +331,18 @@ fn unitpack_spherical_lut16p_encode(
     let lo12 = lo11 & 0xffffffu;
     let e3 = f32(hi12) * 16777216.0f + f32(lo12);
     let n3 = f32(t26.x * t26.x + t26.y * t26.y + t26.z * t26.z);
-    let t30 = e3 * best_n < best_e * n3;
+    let t30 = best_e * n3 > e3 * best_n;
     let best2 = select(best, t23, t30);
     let best_e2 = select(best_e, e3, t30);
     let best_n2 = select(best_n, n3, t30);
     let t31 = ((code >> 8u) & 255u) + 0u;
-    let t32 = select(t31, 1u, t31 < 1u) - 1u;
-    let t33 = (((code & 255u) + 2u + 255u) & 255u) | (select(255u, t32, t32 < 0x100u) << 8u);
+    let t32 = select(t31, 1u, 1u > t31) - 1u;
+    let t33 = (((code & 255u) + 2u + 255u) & 255u) | (select(255u, t32, 0x100u > t32) << 8u);
     let t34 = select(vec3<f32>(0.0f), s2, s2 >= vec3<f32>(0.0f));
     let t35 = vec3<u32>(round(select(vec3<f32>(1.0f), t34, t34 <= vec3<f32>(1.0f)) * 255.0f));
     let t36 = t35 + t35 - 255u;
     let axd4 = afix.yzx * t36.zxy - afix.zxy * t36.yzx;
-    let t37 = axd4 < vec3<u32>(0x80000000u);
+    let t37 = vec3<u32>(0x80000000u) > axd4;
     let t38 = 0u - axd4;
     let t39 = vec3<u32>(
         select(t38.x, axd4.x, t37.x),
@@ -368,18 +368,18 @@ fn unitpack_spherical_lut16p_encode(
     let lo16 = lo15 & 0xffffffu;
     let e4 = f32(hi16) * 16777216.0f + f32(lo16);
     let n4 = f32(t36.x * t36.x + t36.y * t36.y + t36.z * t36.z);
-    let t40 = e4 * best_n2 < best_e2 * n4;
+    let t40 = best_e2 * n4 > e4 * best_n2;
     let best3 = select(best2, t33, t40);
     let best_e3 = select(best_e2, e4, t40);
     let best_n3 = select(best_n2, n4, t40);
     let t41 = ((code >> 8u) & 255u) + 1u;
-    let t42 = select(t41, 1u, t41 < 1u) - 1u;
-    let t43 = (((code & 255u) + 0u + 255u) & 255u) | (select(255u, t42, t42 < 0x100u) << 8u);
+    let t42 = select(t41, 1u, 1u > t41) - 1u;
+    let t43 = (((code & 255u) + 0u + 255u) & 255u) | (select(255u, t42, 0x100u > t42) << 8u);
     let t44 = select(vec3<f32>(0.0f), s3, s3 >= vec3<f32>(0.0f));
     let t45 = vec3<u32>(round(select(vec3<f32>(1.0f), t44, t44 <= vec3<f32>(1.0f)) * 255.0f));
     let t46 = t45 + t45 - 255u;
     let axd5 = afix.yzx * t46.zxy - afix.zxy * t46.yzx;
-    let t47 = axd5 < vec3<u32>(0x80000000u);
+    let t47 = vec3<u32>(0x80000000u) > axd5;
     let t48 = 0u - axd5;
     let t49 = vec3<u32>(
         select(t48.x, axd5.x, t47.x),
@@ -405,18 +405,18 @@ fn unitpack_spherical_lut16p_encode(
     let lo20 = lo19 & 0xffffffu;
     let e5 = f32(hi20) * 16777216.0f + f32(lo20);
     let n5 = f32(t46.x * t46.x + t46.y * t46.y + t46.z * t46.z);
-    let t50 = e5 * best_n3 < best_e3 * n5;
+    let t50 = best_e3 * n5 > e5 * best_n3;
     let best4 = select(best3, t43, t50);
     let best_e4 = select(best_e3, e5, t50);
     let best_n4 = select(best_n3, n5, t50);
     let t51 = ((code >> 8u) & 255u) + 1u;
-    let t52 = select(t51, 1u, t51 < 1u) - 1u;
-    let t53 = (((code & 255u) + 2u + 255u) & 255u) | (select(255u, t52, t52 < 0x100u) << 8u);
+    let t52 = select(t51, 1u, 1u > t51) - 1u;
+    let t53 = (((code & 255u) + 2u + 255u) & 255u) | (select(255u, t52, 0x100u > t52) << 8u);
     let t54 = select(vec3<f32>(0.0f), s5, s5 >= vec3<f32>(0.0f));
     let t55 = vec3<u32>(round(select(vec3<f32>(1.0f), t54, t54 <= vec3<f32>(1.0f)) * 255.0f));
     let t56 = t55 + t55 - 255u;
     let axd6 = afix.yzx * t56.zxy - afix.zxy * t56.yzx;
-    let t57 = axd6 < vec3<u32>(0x80000000u);
+    let t57 = vec3<u32>(0x80000000u) > axd6;
     let t58 = 0u - axd6;
     let t59 = vec3<u32>(
         select(t58.x, axd6.x, t57.x),
@@ -442,18 +442,18 @@ fn unitpack_spherical_lut16p_encode(
     let lo24 = lo23 & 0xffffffu;
     let e6 = f32(hi24) * 16777216.0f + f32(lo24);
     let n6 = f32(t56.x * t56.x + t56.y * t56.y + t56.z * t56.z);
-    let t60 = e6 * best_n4 < best_e4 * n6;
+    let t60 = best_e4 * n6 > e6 * best_n4;
     let best5 = select(best4, t53, t60);
     let best_e5 = select(best_e4, e6, t60);
     let best_n5 = select(best_n4, n6, t60);
     let t61 = ((code >> 8u) & 255u) + 2u;
-    let t62 = select(t61, 1u, t61 < 1u) - 1u;
-    let t63 = (((code & 255u) + 0u + 255u) & 255u) | (select(255u, t62, t62 < 0x100u) << 8u);
+    let t62 = select(t61, 1u, 1u > t61) - 1u;
+    let t63 = (((code & 255u) + 0u + 255u) & 255u) | (select(255u, t62, 0x100u > t62) << 8u);
     let t64 = select(vec3<f32>(0.0f), s6, s6 >= vec3<f32>(0.0f));
     let t65 = vec3<u32>(round(select(vec3<f32>(1.0f), t64, t64 <= vec3<f32>(1.0f)) * 255.0f));
     let t66 = t65 + t65 - 255u;
     let axd7 = afix.yzx * t66.zxy - afix.zxy * t66.yzx;
-    let t67 = axd7 < vec3<u32>(0x80000000u);
+    let t67 = vec3<u32>(0x80000000u) > axd7;
     let t68 = 0u - axd7;
     let t69 = vec3<u32>(
         select(t68.x, axd7.x, t67.x),
@@ -479,18 +479,18 @@ fn unitpack_spherical_lut16p_encode(
     let lo28 = lo27 & 0xffffffu;
     let e7 = f32(hi28) * 16777216.0f + f32(lo28);
     let n7 = f32(t66.x * t66.x + t66.y * t66.y + t66.z * t66.z);
-    let t70 = e7 * best_n5 < best_e5 * n7;
+    let t70 = best_e5 * n7 > e7 * best_n5;
     let best6 = select(best5, t63, t70);
     let best_e6 = select(best_e5, e7, t70);
     let best_n6 = select(best_n5, n7, t70);
     let t71 = ((code >> 8u) & 255u) + 2u;
-    let t72 = select(t71, 1u, t71 < 1u) - 1u;
-    let t73 = (((code & 255u) + 1u + 255u) & 255u) | (select(255u, t72, t72 < 0x100u) << 8u);
+    let t72 = select(t71, 1u, 1u > t71) - 1u;
+    let t73 = (((code & 255u) + 1u + 255u) & 255u) | (select(255u, t72, 0x100u > t72) << 8u);
     let t74 = select(vec3<f32>(0.0f), s7, s7 >= vec3<f32>(0.0f));
     let t75 = vec3<u32>(round(select(vec3<f32>(1.0f), t74, t74 <= vec3<f32>(1.0f)) * 255.0f));
     let t76 = t75 + t75 - 255u;
     let axd8 = afix.yzx * t76.zxy - afix.zxy * t76.yzx;
-    let t77 = axd8 < vec3<u32>(0x80000000u);
+    let t77 = vec3<u32>(0x80000000u) > axd8;
     let t78 = 0u - axd8;
     let t79 = vec3<u32>(
         select(t78.x, axd8.x, t77.x),
@@ -516,18 +516,18 @@ fn unitpack_spherical_lut16p_encode(
     let lo32 = lo31 & 0xffffffu;
     let e8 = f32(hi32) * 16777216.0f + f32(lo32);
     let n8 = f32(t76.x * t76.x + t76.y * t76.y + t76.z * t76.z);
-    let t80 = e8 * best_n6 < best_e6 * n8;
+    let t80 = best_e6 * n8 > e8 * best_n6;
     let best7 = select(best6, t73, t80);
     let best_e7 = select(best_e6, e8, t80);
     let best_n7 = select(best_n6, n8, t80);
     let t81 = ((code >> 8u) & 255u) + 2u;
-    let t82 = select(t81, 1u, t81 < 1u) - 1u;
-    let t83 = (((code & 255u) + 2u + 255u) & 255u) | (select(255u, t82, t82 < 0x100u) << 8u);
+    let t82 = select(t81, 1u, 1u > t81) - 1u;
+    let t83 = (((code & 255u) + 2u + 255u) & 255u) | (select(255u, t82, 0x100u > t82) << 8u);
     let t84 = select(vec3<f32>(0.0f), s8, s8 >= vec3<f32>(0.0f));
     let t85 = vec3<u32>(round(select(vec3<f32>(1.0f), t84, t84 <= vec3<f32>(1.0f)) * 255.0f));
     let t86 = t85 + t85 - 255u;
     let axd9 = afix.yzx * t86.zxy - afix.zxy * t86.yzx;
-    let t87 = axd9 < vec3<u32>(0x80000000u);
+    let t87 = vec3<u32>(0x80000000u) > axd9;
     let t88 = 0u - axd9;
     let t89 = vec3<u32>(
         select(t88.x, axd9.x, t87.x),
@@ -553,7 +553,7 @@ fn unitpack_spherical_lut16p_encode(
     let lo36 = lo35 & 0xffffffu;
     let e9 = f32(hi36) * 16777216.0f + f32(lo36);
     let n9 = f32(t86.x * t86.x + t86.y * t86.y + t86.z * t86.z);
-    let best8 = select(best7, t83, e9 * best_n7 < best_e7 * n9);
+    let best8 = select(best7, t83, best_e7 * n9 > e9 * best_n7);
     return select(t4, best8, ok);
 }
 

@@ -32,7 +32,7 @@ fn unitpack_spherical_z24p_sincos_pi(x: f32) -> vec2<f32> {
     let t2 = (((-0.02580689f * c2 + 0.23533063f) * c2 + (-1.3352628f)) * c2 + 4.058712f) * c2;
     let co = (t2 + (-4.934802f)) * c2 + 1.0f;
     let t3 = select(vec2<f32>(s, co), vec2<f32>(co, s), swap);
-    return select(t3, -t3, vec2<bool>((x < 0.0f), back));
+    return select(t3, -t3, vec2<bool>(0.0f > x, back));
 }
 
 // unitpack_spherical_z24p_decode_float: decoder, float form.
@@ -65,7 +65,7 @@ fn unitpack_spherical_z24p_decode(code: u32) -> vec3<f32> {
 //   comparisons or rounded to a unit) is nearest the input's by exact squared distance, the first
 //   on ties.
 fn unitpack_spherical_z24p_encode_codes(v: vec3<f32>) -> vec2<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -73,9 +73,9 @@ fn unitpack_spherical_z24p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let fixed_f = floor(abs(w2.x) * 2097152.0f);
     let fixed2 = u32(fixed_f);
@@ -137,8 +137,8 @@ fn unitpack_spherical_z24p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let h = round(r * 0.31830987f);
     let h2 = select(h, h + 2097152.0f, far);
     let h3 = select(h2, 4194304.0f - h2, y_major);
-    let h4 = select(h3, 8388608.0f - h3, w2.x < 0.0f);
-    let angle = select(h4, -h4, w2.y < 0.0f);
+    let h4 = select(h3, 8388608.0f - h3, 0.0f > w2.x);
+    let angle = select(h4, -h4, 0.0f > w2.y);
     let t9 = floor((angle + 8388608.0f) * 0.00024408102f);
     let t10 = select(0.0f, t9, t9 >= 0.0f);
     let big2_2 = w2.z * w2.z * 4192256.3f;
@@ -151,15 +151,15 @@ fn unitpack_spherical_z24p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let one_if2 = select(0.0f, 1.0f, big2_2 <= t14);
     let up = select(
         0.0f,
-        select(select(0.0f, one_if2, t13 < 0.0f), select(1.0f, one_if, t13 > 0.0f), w2.z >= 0.0f),
-        estimate < 4095.0f
+        select(select(0.0f, one_if2, 0.0f > t13), select(1.0f, one_if, t13 > 0.0f), w2.z >= 0.0f),
+        4095.0f > estimate
     );
     let t15 = estimate - 1.0f - 2046.5f;
     let t16 = t15 * t15 * len2;
     let one_if3 = select(0.0f, 1.0f, big2_2 >= t16);
     let one_if4 = select(0.0f, 1.0f, big2_2 <= t16);
     let t17 = select(
-        select(0.0f, one_if4, t15 < 0.0f),
+        select(0.0f, one_if4, 0.0f > t15),
         select(1.0f, one_if3, t15 > 0.0f),
         w2.z >= 0.0f
     )
@@ -219,7 +219,7 @@ fn unitpack_spherical_z24p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let t29 = (round((round(t28) + 699051.0f) * u2 * 5.9604645e-8f) + (-8388608.0f)) * u2;
     let co = round(t29 * 5.9604645e-8f) + 16777216.0f;
     let t30 = select(vec2<f32>(co, s), vec2<f32>(s, co), swap);
-    let t31 = round(select(t30, -t30, vec2<bool>(back, t23 < 0.0f)) * r2 * 5.9604645e-8f);
+    let t31 = round(select(t30, -t30, vec2<bool>(back, 0.0f > t23)) * r2 * 5.9604645e-8f);
     let offset = vec3<f32>(t31, z3) - aim;
     let offset_u = vec3<u32>(abs(offset));
     let limb1_4 = offset_u.x >> 12u;
@@ -272,7 +272,7 @@ fn unitpack_spherical_z24p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let t41 = (round((round(t40) + 699051.0f) * u2_2 * 5.9604645e-8f) + (-8388608.0f)) * u2_2;
     let co2 = round(t41 * 5.9604645e-8f) + 16777216.0f;
     let t42 = select(vec2<f32>(co2, s2), vec2<f32>(s2, co2), swap2);
-    let t43 = round(select(t42, -t42, vec2<bool>(back2, t35 < 0.0f)) * r3 * 5.9604645e-8f);
+    let t43 = round(select(t42, -t42, vec2<bool>(back2, 0.0f > t35)) * r3 * 5.9604645e-8f);
     let offset2 = vec3<f32>(t43, z4) - aim;
     let offset_u2 = vec3<u32>(abs(offset2));
     let limb1_7 = offset_u2.x >> 12u;
@@ -293,7 +293,7 @@ fn unitpack_spherical_z24p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let hi13 = hi12 + (lo12 >> 24u);
     let lo13 = lo12 & 0xffffffu;
     let dist2 = f32(hi13) * 16777216.0f + f32(lo13);
-    let t44 = s_up <= 4095.0f && base.y <= 4095.0f && dist2 < dist;
+    let t44 = s_up <= 4095.0f && base.y <= 4095.0f && dist > dist2;
     let best = select(cand, cand2, t44);
     let best_d = select(dist, dist2, t44);
     let t45 = vec2<f32>(base.x, t_up);
@@ -326,7 +326,7 @@ fn unitpack_spherical_z24p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let t54 = (round((round(t53) + 699051.0f) * u2_3 * 5.9604645e-8f) + (-8388608.0f)) * u2_3;
     let co3 = round(t54 * 5.9604645e-8f) + 16777216.0f;
     let t55 = select(vec2<f32>(co3, s3), vec2<f32>(s3, co3), swap3);
-    let t56 = round(select(t55, -t55, vec2<bool>(back3, t48 < 0.0f)) * r4 * 5.9604645e-8f);
+    let t56 = round(select(t55, -t55, vec2<bool>(back3, 0.0f > t48)) * r4 * 5.9604645e-8f);
     let offset3 = vec3<f32>(t56, z5) - aim;
     let offset_u3 = vec3<u32>(abs(offset3));
     let limb1_10 = offset_u3.x >> 12u;
@@ -347,7 +347,7 @@ fn unitpack_spherical_z24p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let hi17 = hi16 + (lo16 >> 24u);
     let lo17 = lo16 & 0xffffffu;
     let dist3 = f32(hi17) * 16777216.0f + f32(lo17);
-    let t57 = base.x <= 4095.0f && t_up <= 4095.0f && dist3 < best_d;
+    let t57 = base.x <= 4095.0f && t_up <= 4095.0f && best_d > dist3;
     let best2 = select(best, cand3, t57);
     let best_d2 = select(best_d, dist3, t57);
     let t58 = base + 1.0f;
@@ -380,7 +380,7 @@ fn unitpack_spherical_z24p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let t67 = (round((round(t66) + 699051.0f) * u2_4 * 5.9604645e-8f) + (-8388608.0f)) * u2_4;
     let co4 = round(t67 * 5.9604645e-8f) + 16777216.0f;
     let t68 = select(vec2<f32>(co4, s4), vec2<f32>(s4, co4), swap4);
-    let t69 = round(select(t68, -t68, vec2<bool>(back4, t61 < 0.0f)) * r5 * 5.9604645e-8f);
+    let t69 = round(select(t68, -t68, vec2<bool>(back4, 0.0f > t61)) * r5 * 5.9604645e-8f);
     let offset4 = vec3<f32>(t69, z6) - aim;
     let offset_u4 = vec3<u32>(abs(offset4));
     let limb1_13 = offset_u4.x >> 12u;
@@ -401,7 +401,7 @@ fn unitpack_spherical_z24p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let hi21 = hi20 + (lo20 >> 24u);
     let lo21 = lo20 & 0xffffffu;
     let dist4 = f32(hi21) * 16777216.0f + f32(lo21);
-    let best3 = select(best2, cand4, s_up <= 4095.0f && t_up <= 4095.0f && dist4 < best_d2);
+    let best3 = select(best2, cand4, s_up <= 4095.0f && t_up <= 4095.0f && best_d2 > dist4);
     return best3;
 }
 

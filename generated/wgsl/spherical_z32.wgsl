@@ -31,7 +31,7 @@ fn unitpack_spherical_z32_sincos_pi(x: f32) -> vec2<f32> {
     let t2 = (((-0.02580689f * c2 + 0.23533063f) * c2 + (-1.3352628f)) * c2 + 4.058712f) * c2;
     let co = (t2 + (-4.934802f)) * c2 + 1.0f;
     let t3 = select(vec2<f32>(s, co), vec2<f32>(co, s), swap);
-    return select(t3, -t3, vec2<bool>((x < 0.0f), back));
+    return select(t3, -t3, vec2<bool>(0.0f > x, back));
 }
 
 // unitpack_spherical_z32_decode_float: decoder, float form.
@@ -66,7 +66,7 @@ fn unitpack_spherical_z32_atan2_pi(x: f32, x1: f32) -> f32 {
     let abs_x = abs(x);
     let y_major = abs_x > abs_x1;
     let hi = select(abs_x1, abs_x, y_major);
-    let up = select(1.0f, 1.2676506e30f, hi < 7.888609e-31f);
+    let up = select(1.0f, 1.2676506e30f, 7.888609e-31f > hi);
     let hi2 = hi * up;
     let t = select(abs_x, abs_x1, y_major) * up / select(1.0f, hi2, hi2 > 0.0f);
     let far = t > 0.41421357f;
@@ -77,8 +77,8 @@ fn unitpack_spherical_z32_atan2_pi(x: f32, x1: f32) -> f32 {
     let r = z * ((t2 * z2 + (-0.33333334f)) * z2 + 1.0f);
     let r2 = select(r, r + 0.7853982f, far);
     let r3 = select(r2, 1.5707964f - r2, y_major);
-    let r4 = select(r3, 3.1415927f - r3, x1 < 0.0f);
-    return select(r4, -r4, x < 0.0f) * 0.31830987f;
+    let r4 = select(r3, 3.1415927f - r3, 0.0f > x1);
+    return select(r4, -r4, 0.0f > x) * 0.31830987f;
 }
 
 // unitpack_spherical_z32_encode_float: fast encoder, float form.
@@ -103,7 +103,7 @@ fn unitpack_spherical_z32_encode_float(v: vec3<f32>) -> vec2<f32> {
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 fn unitpack_spherical_z32_round_codes(v: vec3<f32>) -> vec2<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -111,9 +111,9 @@ fn unitpack_spherical_z32_round_codes(v: vec3<f32>) -> vec2<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let split_hi = bitcast<f32>(bitcast<u32>(w2.x) & 0xfffff000u);
     let split_lo = w2.x - split_hi;
@@ -165,8 +165,8 @@ fn unitpack_spherical_z32_round_codes(v: vec3<f32>) -> vec2<f32> {
     let h = round(r * 0.31830987f);
     let h2 = select(h, h + 2097152.0f, far);
     let h3 = select(h2, 4194304.0f - h2, y_major);
-    let h4 = select(h3, 8388608.0f - h3, w2.x < 0.0f);
-    let angle = select(h4, -h4, w2.y < 0.0f);
+    let h4 = select(h3, 8388608.0f - h3, 0.0f > w2.x);
+    let angle = select(h4, -h4, 0.0f > w2.y);
     let t10 = round((angle + 8388608.0f) * 0.0039061904f);
     let t11 = select(0.0f, t10, t10 >= 0.0f);
     let big2_2 = w2.z * w2.z * 1073709060.0f;
@@ -179,15 +179,15 @@ fn unitpack_spherical_z32_round_codes(v: vec3<f32>) -> vec2<f32> {
     let one_if2 = select(0.0f, 1.0f, big2_2 <= t15);
     let up = select(
         0.0f,
-        select(select(0.0f, one_if2, t14 < 0.0f), select(1.0f, one_if, t14 > 0.0f), w2.z >= 0.0f),
-        estimate < 65535.0f
+        select(select(0.0f, one_if2, 0.0f > t14), select(1.0f, one_if, t14 > 0.0f), w2.z >= 0.0f),
+        65535.0f > estimate
     );
     let t16 = estimate - 1.0f - 32767.0f;
     let t17 = t16 * t16 * len2;
     let one_if3 = select(0.0f, 1.0f, big2_2 >= t17);
     let one_if4 = select(0.0f, 1.0f, big2_2 <= t17);
     let t18 = select(
-        select(0.0f, one_if4, t16 < 0.0f),
+        select(0.0f, one_if4, 0.0f > t16),
         select(1.0f, one_if3, t16 > 0.0f),
         w2.z >= 0.0f
     )

@@ -58,7 +58,7 @@ fn unitpack_stereo20_decode(code: u32) -> vec3<f32> {
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 fn unitpack_stereo20_encode_float(v: vec3<f32>) -> vec3<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -66,9 +66,9 @@ fn unitpack_stereo20_encode_float(v: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let fixed_f = floor(abs(w2.x) * 2097152.0f);
     let fixed2 = u32(fixed_f);
@@ -110,7 +110,7 @@ fn unitpack_stereo20_encode_float(v: vec3<f32>) -> vec3<f32> {
     let nudge2 = select(step_down2, 1.0f, root_m1 * root_m1 <= len2);
     let root_j = root_j0 + nudge2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
-    let one_if = select(0.0f, 1.0f, w2.z < 0.0f);
+    let one_if = select(0.0f, 1.0f, 0.0f > w2.z);
     let enc = w2.xy / (root + abs(w2.z)) * 0.5f + 0.5f;
     return vec3<f32>(enc, one_if);
 }
@@ -119,7 +119,7 @@ fn unitpack_stereo20_encode_float(v: vec3<f32>) -> vec3<f32> {
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 fn unitpack_stereo20_round_codes(v: vec3<f32>) -> vec3<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -127,9 +127,9 @@ fn unitpack_stereo20_round_codes(v: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let fixed_f = floor(abs(w2.x) * 2097152.0f);
     let fixed2 = u32(fixed_f);
@@ -172,13 +172,13 @@ fn unitpack_stereo20_round_codes(v: vec3<f32>) -> vec3<f32> {
     let root_j = root_j0 + nudge2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
     let t1 = root + abs(w2.z);
-    let one_if = select(0.0f, 1.0f, w2.z < 0.0f);
+    let one_if = select(0.0f, 1.0f, 0.0f > w2.z);
     let t = w2.x * 511.5f;
     let t2 = round(t / t1 + 511.5f);
     let t3 = select(0.0f, t2, t2 >= 0.0f);
     let estimate = select(1023.0f, t3, t3 <= 1023.0f);
     let one_if2 = select(0.0f, 1.0f, t >= (estimate - 511.0f) * t1);
-    let up = select(0.0f, one_if2, estimate < 1023.0f);
+    let up = select(0.0f, one_if2, 1023.0f > estimate);
     let one_if3 = select(0.0f, 1.0f, t >= (estimate - 1.0f - 511.0f) * t1);
     let down = select(0.0f, one_if3 - 1.0f, estimate > 0.0f);
     let t4 = w2.y * 255.5f;
@@ -186,7 +186,7 @@ fn unitpack_stereo20_round_codes(v: vec3<f32>) -> vec3<f32> {
     let t6 = select(0.0f, t5, t5 >= 0.0f);
     let estimate2 = select(511.0f, t6, t6 <= 511.0f);
     let one_if4 = select(0.0f, 1.0f, t4 >= (estimate2 - 255.0f) * t1);
-    let up2 = select(0.0f, one_if4, estimate2 < 511.0f);
+    let up2 = select(0.0f, one_if4, 511.0f > estimate2);
     let one_if5 = select(0.0f, 1.0f, t4 >= (estimate2 - 1.0f - 255.0f) * t1);
     let down2 = select(0.0f, one_if5 - 1.0f, estimate2 > 0.0f);
     return vec3<f32>(estimate + up + down, estimate2 + up2 + down2, one_if);

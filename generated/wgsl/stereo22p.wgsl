@@ -55,7 +55,7 @@ fn unitpack_stereo22p_decode(code: u32) -> vec3<f32> {
 //   comparisons or rounded to a unit) is nearest the input's by exact squared distance, the first
 //   on ties.
 fn unitpack_stereo22p_encode_codes(v: vec3<f32>) -> vec3<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -63,9 +63,9 @@ fn unitpack_stereo22p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let fixed_f = floor(abs(w2.x) * 2097152.0f);
     let fixed2 = u32(fixed_f);
@@ -108,7 +108,7 @@ fn unitpack_stereo22p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let root_j = root_j0 + nudge2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
     let t1 = root + abs(w2.z);
-    let one_if = select(0.0f, 1.0f, w2.z < 0.0f);
+    let one_if = select(0.0f, 1.0f, 0.0f > w2.z);
     let t2 = w2.xy * vec2<f32>(1023.5f, 511.5f);
     let t3 = round(t2 / t1 + vec2<f32>(1023.5f, 511.5f));
     let t4 = select(vec2<f32>(0.0f), t3, t3 >= vec2<f32>(0.0f));
@@ -117,7 +117,7 @@ fn unitpack_stereo22p_encode_codes(v: vec3<f32>) -> vec3<f32> {
         + select(
             vec2<f32>(0.0f),
             select(vec2<f32>(0.0f), vec2<f32>(1.0f), t2 >= (t5 - vec2<f32>(1022.5f, 510.5f)) * t1),
-            t5 < vec2<f32>(2047.0f, 1023.0f)
+            vec2<f32>(2047.0f, 1023.0f) > t5
         );
     let t7 = select(
         vec2<f32>(0.0f),
@@ -217,7 +217,7 @@ fn unitpack_stereo22p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let hi12 = hi11 + (lo11 >> 24u);
     let lo12 = lo11 & 0xffffffu;
     let dist2 = f32(hi12) * 16777216.0f + f32(lo12);
-    let t24 = s_up <= 2047.0f && base.y <= 1023.0f && dist2 < dist;
+    let t24 = s_up <= 2047.0f && base.y <= 1023.0f && dist > dist2;
     let best = select(cand, cand2, t24);
     let best_d = select(dist, dist2, t24);
     let t25 = vec2<f32>(base.x, t_up);
@@ -259,7 +259,7 @@ fn unitpack_stereo22p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let hi16 = hi15 + (lo15 >> 24u);
     let lo16 = lo15 & 0xffffffu;
     let dist3 = f32(hi16) * 16777216.0f + f32(lo16);
-    let t32 = base.x <= 2047.0f && t_up <= 1023.0f && dist3 < best_d;
+    let t32 = base.x <= 2047.0f && t_up <= 1023.0f && best_d > dist3;
     let best2 = select(best, cand3, t32);
     let best_d2 = select(best_d, dist3, t32);
     let t33 = base + 1.0f;
@@ -301,7 +301,7 @@ fn unitpack_stereo22p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let hi20 = hi19 + (lo19 >> 24u);
     let lo20 = lo19 & 0xffffffu;
     let dist4 = f32(hi20) * 16777216.0f + f32(lo20);
-    let best3 = select(best2, cand4, s_up <= 2047.0f && t_up <= 1023.0f && dist4 < best_d2);
+    let best3 = select(best2, cand4, s_up <= 2047.0f && t_up <= 1023.0f && best_d2 > dist4);
     return vec3<f32>(best3, one_if);
 }
 

@@ -48,7 +48,7 @@ fn unitpack_stereo_scaled24p_decode(code: u32) -> vec3<f32> {
 //   comparisons or rounded to a unit) is nearest the input's by exact squared distance, the first
 //   on ties.
 fn unitpack_stereo_scaled24p_encode_codes(v: vec3<f32>) -> vec2<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -56,9 +56,9 @@ fn unitpack_stereo_scaled24p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let fixed_f = floor(abs(w2.x) * 2097152.0f);
     let fixed2 = u32(fixed_f);
@@ -132,7 +132,7 @@ fn unitpack_stereo_scaled24p_encode_codes(v: vec3<f32>) -> vec2<f32> {
         + select(
             vec2<f32>(0.0f),
             select(vec2<f32>(0.0f), vec2<f32>(1.0f), t6 >= (t9 - 2046.5f) * t5),
-            t9 < vec2<f32>(4095.0f)
+            vec2<f32>(4095.0f) > t9
         );
     let t11 = select(
         vec2<f32>(0.0f),
@@ -219,7 +219,7 @@ fn unitpack_stereo_scaled24p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let hi15 = hi14 + (lo14 >> 24u);
     let lo15 = lo14 & 0xffffffu;
     let dist2 = f32(hi15) * 16777216.0f + f32(lo15);
-    let t29 = s_up <= 4095.0f && base.y <= 4095.0f && dist2 < dist;
+    let t29 = s_up <= 4095.0f && base.y <= 4095.0f && dist > dist2;
     let best = select(cand, cand2, t29);
     let best_d = select(dist, dist2, t29);
     let t30 = vec2<f32>(base.x, t_up);
@@ -257,7 +257,7 @@ fn unitpack_stereo_scaled24p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let hi19 = hi18 + (lo18 >> 24u);
     let lo19 = lo18 & 0xffffffu;
     let dist3 = f32(hi19) * 16777216.0f + f32(lo19);
-    let t38 = base.x <= 4095.0f && t_up <= 4095.0f && dist3 < best_d;
+    let t38 = base.x <= 4095.0f && t_up <= 4095.0f && best_d > dist3;
     let best2 = select(best, cand3, t38);
     let best_d2 = select(best_d, dist3, t38);
     let t39 = base + 1.0f;
@@ -295,7 +295,7 @@ fn unitpack_stereo_scaled24p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let hi23 = hi22 + (lo22 >> 24u);
     let lo23 = lo22 & 0xffffffu;
     let dist4 = f32(hi23) * 16777216.0f + f32(lo23);
-    let best3 = select(best2, cand4, s_up <= 4095.0f && t_up <= 4095.0f && dist4 < best_d2);
+    let best3 = select(best2, cand4, s_up <= 4095.0f && t_up <= 4095.0f && best_d2 > dist4);
     return select(vec2<f32>(2048.0f), select(best3, vec2<f32>(0.0f), opz_a <= 0.0f), ok);
 }
 

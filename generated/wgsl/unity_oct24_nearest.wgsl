@@ -30,7 +30,7 @@
 fn unitpack_unity_oct24_nearest_decode_float(params: vec3<f32>) -> vec3<f32> {
     let t1 = params * 255.5f;
     let t2 = floor(abs(t1));
-    let t3 = select(t2, -t2, t1 < vec3<f32>(0.0f));
+    let t3 = select(t2, -t2, vec3<f32>(0.0f) > t1);
     let t4 = floor(t3.z * 0.0625f);
     let codes = t3.xy + vec2<f32>(t3.z - t4 * 16.0f, t4) * 256.0f;
     let t5 = codes * 0.00024420026f * 2.0f - 1.0f;
@@ -78,7 +78,7 @@ fn unitpack_unity_oct24_nearest_round_codes(v: vec3<f32>) -> vec3<f32> {
     let floor_abs_t6 = floor(abs_t6);
     let t7 = floor_abs_t6
         + select(vec2<f32>(0.0f), vec2<f32>(1.0f), abs_t6 - floor_abs_t6 >= vec2<f32>(0.5f));
-    let codes = select(t7, -t7, t6 < vec2<f32>(0.0f));
+    let codes = select(t7, -t7, vec2<f32>(0.0f) > t6);
     let high = floor(codes * 0.00390625f);
     let bytes = vec3<f32>(codes - high * 256.0f, high.x + high.y * 16.0f);
     return bytes;
@@ -119,7 +119,7 @@ fn unitpack_unity_oct24_nearest_encode(v: vec3<f32>) -> u32 {
     let floor_abs_t6 = floor(abs_t6);
     let t7 = floor_abs_t6
         + select(vec2<f32>(0.0f), vec2<f32>(1.0f), abs_t6 - floor_abs_t6 >= vec2<f32>(0.5f));
-    let codes = select(t7, -t7, t6 < vec2<f32>(0.0f));
+    let codes = select(t7, -t7, vec2<f32>(0.0f) > t6);
     let high = floor(codes * 0.00390625f);
     let bytes = vec3<f32>(codes - high * 256.0f, high.x + high.y * 16.0f);
     return u32(bytes.x) | (u32(bytes.y) << 8u) | (u32(bytes.z) << 16u);

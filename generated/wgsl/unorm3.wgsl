@@ -65,7 +65,7 @@ fn unitpack_unorm3_encode_float(v: vec3<f32>) -> vec3<f32> {
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 fn unitpack_unorm3_round_codes(v: vec3<f32>) -> vec3<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -73,9 +73,9 @@ fn unitpack_unorm3_round_codes(v: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let split_hi = bitcast<f32>(bitcast<u32>(w2.x) & 0xfffff000u);
     let split_lo = w2.x - split_hi;
@@ -101,7 +101,7 @@ fn unitpack_unorm3_round_codes(v: vec3<f32>) -> vec3<f32> {
         select(
             vec3<f32>(0.0f),
             select(vec3<f32>(0.0f), vec3<f32>(1.0f), t6 <= t7),
-            t5 < vec3<f32>(0.0f)
+            vec3<f32>(0.0f) > t5
         ),
         select(
             vec3<f32>(1.0f),
@@ -116,7 +116,7 @@ fn unitpack_unorm3_round_codes(v: vec3<f32>) -> vec3<f32> {
         select(
             vec3<f32>(0.0f),
             select(vec3<f32>(0.0f), vec3<f32>(1.0f), t6 <= t10),
-            t9 < vec3<f32>(0.0f)
+            vec3<f32>(0.0f) > t9
         ),
         select(
             vec3<f32>(1.0f),
@@ -126,7 +126,7 @@ fn unitpack_unorm3_round_codes(v: vec3<f32>) -> vec3<f32> {
         w2 >= vec3<f32>(0.0f)
     );
     return t4
-        + select(vec3<f32>(0.0f), t8, t4 < vec3<f32>(255.0f))
+        + select(vec3<f32>(0.0f), t8, vec3<f32>(255.0f) > t4)
         + select(vec3<f32>(0.0f), t11 - 1.0f, t4 > vec3<f32>(0.0f));
 }
 

@@ -32,7 +32,7 @@ fn unitpack_warpedcube16_sincos_pi(x: f32) -> vec2<f32> {
     let t2 = (((-0.02580689f * c2 + 0.23533063f) * c2 + (-1.3352628f)) * c2 + 4.058712f) * c2;
     let co = (t2 + (-4.934802f)) * c2 + 1.0f;
     let t3 = select(vec2<f32>(s, co), vec2<f32>(co, s), swap);
-    return select(t3, -t3, vec2<bool>((x < 0.0f), back));
+    return select(t3, -t3, vec2<bool>(0.0f > x, back));
 }
 
 // unitpack_warpedcube16_decode_float: decoder, float form.
@@ -81,7 +81,7 @@ fn unitpack_warpedcube16_atan2_pi(n: f32, x: f32) -> f32 {
     let abs_n = abs(n);
     let y_major = abs_n > abs_x;
     let hi = select(abs_x, abs_n, y_major);
-    let up = select(1.0f, 1.2676506e30f, hi < 7.888609e-31f);
+    let up = select(1.0f, 1.2676506e30f, 7.888609e-31f > hi);
     let hi2 = hi * up;
     let t = select(abs_n, abs_x, y_major) * up / select(1.0f, hi2, hi2 > 0.0f);
     let far = t > 0.41421357f;
@@ -92,8 +92,8 @@ fn unitpack_warpedcube16_atan2_pi(n: f32, x: f32) -> f32 {
     let r = z * ((t2 * z2 + (-0.33333334f)) * z2 + 1.0f);
     let r2 = select(r, r + 0.7853982f, far);
     let r3 = select(r2, 1.5707964f - r2, y_major);
-    let r4 = select(r3, 3.1415927f - r3, x < 0.0f);
-    return select(r4, -r4, n < 0.0f) * 0.31830987f;
+    let r4 = select(r3, 3.1415927f - r3, 0.0f > x);
+    return select(r4, -r4, 0.0f > n) * 0.31830987f;
 }
 
 // unitpack_warpedcube16_encode_float: fast encoder, float form.
@@ -104,7 +104,7 @@ fn unitpack_warpedcube16_atan2_pi(n: f32, x: f32) -> f32 {
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 fn unitpack_warpedcube16_encode_float(v: vec3<f32>) -> vec3<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -112,15 +112,15 @@ fn unitpack_warpedcube16_encode_float(v: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let abs_w2 = abs(w2);
     let t1 = abs_w2.z >= abs_w2.x && abs_w2.z >= abs_w2.y;
     let t2 = abs_w2.y >= abs_w2.x;
     let major = select(select(w2.x, w2.y, t2), w2.z, t1);
-    let face = select(select(0.0f, 2.0f, t2), 4.0f, t1) + select(0.0f, 1.0f, major < 0.0f);
+    let face = select(select(0.0f, 2.0f, t2), 4.0f, t1) + select(0.0f, 1.0f, 0.0f > major);
     let s = select(select(w2.y, w2.z, t2), w2.x, t1);
     let t = select(select(w2.z, w2.x, t2), w2.y, t1);
     let abs_major = abs(major);
@@ -137,7 +137,7 @@ fn unitpack_warpedcube16_encode_float(v: vec3<f32>) -> vec3<f32> {
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 fn unitpack_warpedcube16_round_codes(v: vec3<f32>) -> vec3<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -145,15 +145,15 @@ fn unitpack_warpedcube16_round_codes(v: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let abs_w2 = abs(w2);
     let t1 = abs_w2.z >= abs_w2.x && abs_w2.z >= abs_w2.y;
     let t2 = abs_w2.y >= abs_w2.x;
     let major = select(select(w2.x, w2.y, t2), w2.z, t1);
-    let face = select(select(0.0f, 2.0f, t2), 4.0f, t1) + select(0.0f, 1.0f, major < 0.0f);
+    let face = select(select(0.0f, 2.0f, t2), 4.0f, t1) + select(0.0f, 1.0f, 0.0f > major);
     let abs_major = abs(major);
     let t3 = select(select(w2.yz, w2.zx, t2), w2.xy, t1);
     let abs_t3 = abs(t3);
@@ -203,9 +203,9 @@ fn unitpack_warpedcube16_round_codes(v: vec3<f32>) -> vec3<f32> {
     let t30 = round(round(t23 * (t29 + 8388608.0f) * 1.1920929e-7f) * 0.31830987f);
     let t31 = select(t30, t30 + 2097152.0f, t15);
     let t32 = select(t31, 4194304.0f - t31, t5);
-    let t33 = select(t32, 8388608.0f - t32, vec2<f32>(abs_major) < vec2<f32>(0.0f));
+    let t33 = select(t32, 8388608.0f - t32, vec2<f32>(0.0f) > vec2<f32>(abs_major));
     let t34 = round(
-        (select(t33, -t33, t3 < vec2<f32>(0.0f)) * 4.0f + 8388608.0f)
+        (select(t33, -t33, vec2<f32>(0.0f) > t3) * 4.0f + 8388608.0f)
             * vec2<f32>(7.56979e-6f, 3.7550926e-6f)
     );
     let t35 = select(vec2<f32>(0.0f), t34, t34 >= vec2<f32>(0.0f));

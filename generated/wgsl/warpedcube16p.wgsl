@@ -32,7 +32,7 @@ fn unitpack_warpedcube16p_sincos_pi(x: f32) -> vec2<f32> {
     let t2 = (((-0.02580689f * c2 + 0.23533063f) * c2 + (-1.3352628f)) * c2 + 4.058712f) * c2;
     let co = (t2 + (-4.934802f)) * c2 + 1.0f;
     let t3 = select(vec2<f32>(s, co), vec2<f32>(co, s), swap);
-    return select(t3, -t3, vec2<bool>((x < 0.0f), back));
+    return select(t3, -t3, vec2<bool>(0.0f > x, back));
 }
 
 // unitpack_warpedcube16p_decode_float: decoder, float form.
@@ -79,7 +79,7 @@ fn unitpack_warpedcube16p_decode(code: u32) -> vec3<f32> {
 //   comparisons or rounded to a unit) is nearest the input's by exact squared distance, the first
 //   on ties.
 fn unitpack_warpedcube16p_encode_codes(v: vec3<f32>) -> vec3<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -87,15 +87,15 @@ fn unitpack_warpedcube16p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let abs_w2 = abs(w2);
     let t1 = abs_w2.z >= abs_w2.x && abs_w2.z >= abs_w2.y;
     let t2 = abs_w2.y >= abs_w2.x;
     let major = select(select(w2.x, w2.y, t2), w2.z, t1);
-    let face = select(select(0.0f, 2.0f, t2), 4.0f, t1) + select(0.0f, 1.0f, major < 0.0f);
+    let face = select(select(0.0f, 2.0f, t2), 4.0f, t1) + select(0.0f, 1.0f, 0.0f > major);
     let abs_major = abs(major);
     let t3 = select(select(w2.yz, w2.zx, t2), w2.xy, t1);
     let abs_t3 = abs(t3);
@@ -145,9 +145,9 @@ fn unitpack_warpedcube16p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let t30 = round(round(t23 * (t29 + 8388608.0f) * 1.1920929e-7f) * 0.31830987f);
     let t31 = select(t30, t30 + 2097152.0f, t15);
     let t32 = select(t31, 4194304.0f - t31, t5);
-    let t33 = select(t32, 8388608.0f - t32, vec2<f32>(abs_major) < vec2<f32>(0.0f));
+    let t33 = select(t32, 8388608.0f - t32, vec2<f32>(0.0f) > vec2<f32>(abs_major));
     let t34 = floor(
-        (select(t33, -t33, t3 < vec2<f32>(0.0f)) * 4.0f + 8388608.0f)
+        (select(t33, -t33, vec2<f32>(0.0f) > t3) * 4.0f + 8388608.0f)
             * vec2<f32>(7.56979e-6f, 3.7550926e-6f)
     );
     let t35 = select(vec2<f32>(0.0f), t34, t34 >= vec2<f32>(0.0f));
@@ -217,7 +217,7 @@ fn unitpack_warpedcube16p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let t51 = t43 * (round((round(t50) + (-2796203.0f)) * t44 * 5.9604645e-8f) + 16777216.0f);
     let t52 = round(t51 * 5.9604645e-8f);
     let t53 = select(t52, t48, t42);
-    let t54 = select(t53, -t53, t39 < vec2<f32>(0.0f));
+    let t54 = select(t53, -t53, vec2<f32>(0.0f) > t39);
     let t55 = select(t48, t52, t42);
     let t56 = select(t55, -t55, t40);
     let t57 = floor(t54 / t56 * 2097152.0f);
@@ -305,7 +305,7 @@ fn unitpack_warpedcube16p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let t78 = t70 * (round((round(t77) + (-2796203.0f)) * t71 * 5.9604645e-8f) + 16777216.0f);
     let t79 = round(t78 * 5.9604645e-8f);
     let t80 = select(t79, t75, t69);
-    let t81 = select(t80, -t80, t66 < vec2<f32>(0.0f));
+    let t81 = select(t80, -t80, vec2<f32>(0.0f) > t66);
     let t82 = select(t75, t79, t69);
     let t83 = select(t82, -t82, t67);
     let t84 = floor(t81 / t83 * 2097152.0f);
@@ -373,7 +373,7 @@ fn unitpack_warpedcube16p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let hi12 = hi11 + (lo11 >> 24u);
     let lo12 = lo11 & 0xffffffu;
     let dist2 = f32(hi12) * 16777216.0f + f32(lo12);
-    let t92 = s_up <= 127.0f && base.y <= 63.0f && dist2 < dist;
+    let t92 = s_up <= 127.0f && base.y <= 63.0f && dist > dist2;
     let best = select(cand, cand2, t92);
     let best_d = select(dist, dist2, t92);
     let t93 = vec2<f32>(base.x, t_up);
@@ -394,7 +394,7 @@ fn unitpack_warpedcube16p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let t106 = t98 * (round((round(t105) + (-2796203.0f)) * t99 * 5.9604645e-8f) + 16777216.0f);
     let t107 = round(t106 * 5.9604645e-8f);
     let t108 = select(t107, t103, t97);
-    let t109 = select(t108, -t108, t94 < vec2<f32>(0.0f));
+    let t109 = select(t108, -t108, vec2<f32>(0.0f) > t94);
     let t110 = select(t103, t107, t97);
     let t111 = select(t110, -t110, t95);
     let t112 = floor(t109 / t111 * 2097152.0f);
@@ -462,7 +462,7 @@ fn unitpack_warpedcube16p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let hi16 = hi15 + (lo15 >> 24u);
     let lo16 = lo15 & 0xffffffu;
     let dist3 = f32(hi16) * 16777216.0f + f32(lo16);
-    let t120 = base.x <= 127.0f && t_up <= 63.0f && dist3 < best_d;
+    let t120 = base.x <= 127.0f && t_up <= 63.0f && best_d > dist3;
     let best2 = select(best, cand3, t120);
     let best_d2 = select(best_d, dist3, t120);
     let t121 = base + 1.0f;
@@ -485,7 +485,7 @@ fn unitpack_warpedcube16p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let t134 = t126 * (round((round(t133) + (-2796203.0f)) * t127 * 5.9604645e-8f) + 16777216.0f);
     let t135 = round(t134 * 5.9604645e-8f);
     let t136 = select(t135, t131, t125);
-    let t137 = select(t136, -t136, t122 < vec2<f32>(0.0f));
+    let t137 = select(t136, -t136, vec2<f32>(0.0f) > t122);
     let t138 = select(t131, t135, t125);
     let t139 = select(t138, -t138, t123);
     let t140 = floor(t137 / t139 * 2097152.0f);
@@ -553,7 +553,7 @@ fn unitpack_warpedcube16p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let hi20 = hi19 + (lo19 >> 24u);
     let lo20 = lo19 & 0xffffffu;
     let dist4 = f32(hi20) * 16777216.0f + f32(lo20);
-    let best3 = select(best2, cand4, s_up <= 127.0f && t_up <= 63.0f && dist4 < best_d2);
+    let best3 = select(best2, cand4, s_up <= 127.0f && t_up <= 63.0f && best_d2 > dist4);
     return vec3<f32>(best3, face);
 }
 

@@ -28,7 +28,7 @@
 fn unitpack_xy16_ieee_decode_float(params: vec2<f32>) -> vec3<f32> {
     let params_sq = params * params;
     let t1 = params_sq.x + params_sq.y;
-    let d = select(1.0f, t1, t1 < 1.0f);
+    let d = select(1.0f, t1, 1.0f > t1);
     return vec3<f32>(params, sqrt(1.0f - d));
 }
 
@@ -52,7 +52,7 @@ fn unitpack_xy16_ieee_decode(code: u32) -> vec3<f32> {
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 fn unitpack_xy16_ieee_encode_float(v: vec3<f32>) -> vec2<f32> {
-    let t1 = vec3<f32>(v.xy, select(v.z, 0.0f, v.z < 0.0f));
+    let t1 = vec3<f32>(v.xy, select(v.z, 0.0f, 0.0f > v.z));
     let t1_sq = t1 * t1;
     let len2 = t1_sq.x + t1_sq.y + t1_sq.z;
     let p = v.xy / sqrt(len2);

@@ -31,7 +31,7 @@ fn unitpack_xy16_latc_decode_float(params: vec4<f32>) -> vec3<f32> {
     let p = params.wy * 2.0f - 1.0f;
     let p_sq = p * p;
     let t1 = p_sq.x + p_sq.y;
-    let d = select(1.0f, t1, t1 < 1.0f);
+    let d = select(1.0f, t1, 1.0f > t1);
     return vec3<f32>(p, sqrt(1.0f - d));
 }
 
@@ -81,7 +81,7 @@ fn unitpack_xy16_latc_encode_float(v: vec3<f32>) -> vec4<f32> {
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 fn unitpack_xy16_latc_round_codes(v: vec3<f32>) -> vec4<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -89,9 +89,9 @@ fn unitpack_xy16_latc_round_codes(v: vec3<f32>) -> vec4<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let t1 = select(0.0f, w.z, w.z > 0.0f);
     let split_hi = bitcast<f32>(bitcast<u32>(w.x) & 0xfffff000u);
     let split_lo = w.x - split_hi;
@@ -117,7 +117,7 @@ fn unitpack_xy16_latc_round_codes(v: vec3<f32>) -> vec4<f32> {
         select(
             vec2<f32>(0.0f),
             select(vec2<f32>(0.0f), vec2<f32>(1.0f), t7 <= t8),
-            t6 < vec2<f32>(0.0f)
+            vec2<f32>(0.0f) > t6
         ),
         select(
             vec2<f32>(1.0f),
@@ -132,7 +132,7 @@ fn unitpack_xy16_latc_round_codes(v: vec3<f32>) -> vec4<f32> {
         select(
             vec2<f32>(0.0f),
             select(vec2<f32>(0.0f), vec2<f32>(1.0f), t7 <= t11),
-            t10 < vec2<f32>(0.0f)
+            vec2<f32>(0.0f) > t10
         ),
         select(
             vec2<f32>(1.0f),
@@ -142,7 +142,7 @@ fn unitpack_xy16_latc_round_codes(v: vec3<f32>) -> vec4<f32> {
         w.xy >= vec2<f32>(0.0f)
     );
     let t13 = t5
-        + select(vec2<f32>(0.0f), t9, t5 < vec2<f32>(255.0f))
+        + select(vec2<f32>(0.0f), t9, vec2<f32>(255.0f) > t5)
         + select(vec2<f32>(0.0f), t12 - 1.0f, t5 > vec2<f32>(0.0f));
     let c = select(vec2<f32>(128.0f), t13, ok && len2 > 0.0f);
     return c.yyyx;

@@ -31,7 +31,7 @@ fn unitpack_xy16_rxgb_decode_float(params: vec4<f32>) -> vec3<f32> {
     let p = params.wy * 2.0f - 1.0f;
     let p_sq = p * p;
     let t1 = p_sq.x + p_sq.y;
-    let d = select(1.0f, t1, t1 < 1.0f);
+    let d = select(1.0f, t1, 1.0f > t1);
     return vec3<f32>(p, sqrt(1.0f - d));
 }
 
@@ -99,7 +99,7 @@ fn unitpack_xy16_rxgb_encode_float(v: vec3<f32>) -> vec4<f32> {
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 fn unitpack_xy16_rxgb_round_codes(v: vec3<f32>) -> vec4<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -107,9 +107,9 @@ fn unitpack_xy16_rxgb_round_codes(v: vec3<f32>) -> vec4<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let t1 = select(0.0f, w.z, w.z > 0.0f);
     let split_hi = bitcast<f32>(bitcast<u32>(w.x) & 0xfffff000u);
     let split_lo = w.x - split_hi;
@@ -135,7 +135,7 @@ fn unitpack_xy16_rxgb_round_codes(v: vec3<f32>) -> vec4<f32> {
         select(
             vec2<f32>(0.0f),
             select(vec2<f32>(0.0f), vec2<f32>(1.0f), t7 <= t8),
-            t6 < vec2<f32>(0.0f)
+            vec2<f32>(0.0f) > t6
         ),
         select(
             vec2<f32>(1.0f),
@@ -150,7 +150,7 @@ fn unitpack_xy16_rxgb_round_codes(v: vec3<f32>) -> vec4<f32> {
         select(
             vec2<f32>(0.0f),
             select(vec2<f32>(0.0f), vec2<f32>(1.0f), t7 <= t11),
-            t10 < vec2<f32>(0.0f)
+            vec2<f32>(0.0f) > t10
         ),
         select(
             vec2<f32>(1.0f),
@@ -160,10 +160,10 @@ fn unitpack_xy16_rxgb_round_codes(v: vec3<f32>) -> vec4<f32> {
         w.xy >= vec2<f32>(0.0f)
     );
     let t13 = t5
-        + select(vec2<f32>(0.0f), t9, t5 < vec2<f32>(255.0f))
+        + select(vec2<f32>(0.0f), t9, vec2<f32>(255.0f) > t5)
         + select(vec2<f32>(0.0f), t12 - 1.0f, t5 > vec2<f32>(0.0f));
     let c = select(vec2<f32>(128.0f), t13, ok && len2 > 0.0f);
-    let normal2 = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal2 = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal2 = abs(normal2);
     let larger2 = select(abs_normal2.y, abs_normal2.x, abs_normal2.x >= abs_normal2.y);
     let largest2 = select(abs_normal2.z, larger2, larger2 >= abs_normal2.z);
@@ -171,12 +171,12 @@ fn unitpack_xy16_rxgb_round_codes(v: vec3<f32>) -> vec4<f32> {
     let scaled2 = normal2 * scale2;
     let abs_scaled2 = abs(scaled2);
     let sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    let sum_below_16_2 = sum2 < 16.0f;
+    let sum_below_16_2 = 16.0f > sum2;
     let ok2 = sum2 >= 2.0f && sum_below_16_2;
-    let w2 = select(scaled2, vec3<f32>(0.0f), abs(scaled2) < vec3<f32>(1.8189894e-12f));
+    let w2 = select(scaled2, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled2));
     let w3 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w2, ok2);
     let t14 = vec3<f32>(w3.xy, select(0.0f, w3.z, w3.z > 0.0f));
-    let normal3 = select(t14, vec3<f32>(0.0f), abs(t14) < vec3<f32>(1.1754944e-38f));
+    let normal3 = select(t14, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(t14));
     let abs_normal3 = abs(normal3);
     let larger3 = select(abs_normal3.y, abs_normal3.x, abs_normal3.x >= abs_normal3.y);
     let largest3 = select(abs_normal3.z, larger3, larger3 >= abs_normal3.z);
@@ -184,9 +184,9 @@ fn unitpack_xy16_rxgb_round_codes(v: vec3<f32>) -> vec4<f32> {
     let scaled3 = normal3 * scale3;
     let abs_scaled3 = abs(scaled3);
     let sum3 = abs_scaled3.x + abs_scaled3.y + abs_scaled3.z;
-    let sum_below_16_3 = sum3 < 16.0f;
+    let sum_below_16_3 = 16.0f > sum3;
     let ok3 = sum3 >= 2.0f && sum_below_16_3;
-    let w4 = select(scaled3, vec3<f32>(0.0f), abs(scaled3) < vec3<f32>(1.8189894e-12f));
+    let w4 = select(scaled3, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled3));
     let w5 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w4, ok3);
     let split_hi4 = bitcast<f32>(bitcast<u32>(w5.x) & 0xfffff000u);
     let split_lo4 = w5.x - split_hi4;
@@ -212,15 +212,15 @@ fn unitpack_xy16_rxgb_round_codes(v: vec3<f32>) -> vec4<f32> {
     let one_if2 = select(0.0f, 1.0f, big2 <= t19);
     let up = select(
         0.0f,
-        select(select(0.0f, one_if2, t18 < 0.0f), select(1.0f, one_if, t18 > 0.0f), w5.z >= 0.0f),
-        estimate < 255.0f
+        select(select(0.0f, one_if2, 0.0f > t18), select(1.0f, one_if, t18 > 0.0f), w5.z >= 0.0f),
+        255.0f > estimate
     );
     let t20 = estimate - 1.0f - 127.0f;
     let t21 = t20 * t20 * len2_2;
     let one_if3 = select(0.0f, 1.0f, big2 >= t21);
     let one_if4 = select(0.0f, 1.0f, big2 <= t21);
     let t22 = select(
-        select(0.0f, one_if4, t20 < 0.0f),
+        select(0.0f, one_if4, 0.0f > t20),
         select(1.0f, one_if3, t20 > 0.0f),
         w5.z >= 0.0f
     )

@@ -28,7 +28,7 @@
 fn unitpack_xy16p_decode_float(params: vec2<f32>) -> vec3<f32> {
     let params_sq = params * params;
     let t1 = params_sq.x + params_sq.y;
-    let d = select(1.0f, t1, t1 < 1.0f);
+    let d = select(1.0f, t1, 1.0f > t1);
     return vec3<f32>(params, sqrt(1.0f - d));
 }
 
@@ -50,7 +50,7 @@ fn unitpack_xy16p_decode(code: u32) -> vec3<f32> {
 //   comparisons or rounded to a unit) is nearest the input's by exact squared distance, the first
 //   on ties.
 fn unitpack_xy16p_encode_codes(v: vec3<f32>) -> vec2<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -58,12 +58,12 @@ fn unitpack_xy16p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let t1 = vec3<f32>(w2.xy, select(0.0f, w2.z, w2.z > 0.0f));
-    let normal2 = select(t1, vec3<f32>(0.0f), abs(t1) < vec3<f32>(1.1754944e-38f));
+    let normal2 = select(t1, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(t1));
     let abs_normal2 = abs(normal2);
     let larger2 = select(abs_normal2.y, abs_normal2.x, abs_normal2.x >= abs_normal2.y);
     let largest2 = select(abs_normal2.z, larger2, larger2 >= abs_normal2.z);
@@ -71,9 +71,9 @@ fn unitpack_xy16p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let scaled2 = normal2 * scale2;
     let abs_scaled2 = abs(scaled2);
     let sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    let sum_below_16_2 = sum2 < 16.0f;
+    let sum_below_16_2 = 16.0f > sum2;
     let ok2 = sum2 >= 2.0f && sum_below_16_2;
-    let w3 = select(scaled2, vec3<f32>(0.0f), abs(scaled2) < vec3<f32>(1.8189894e-12f));
+    let w3 = select(scaled2, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled2));
     let w4 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w3, ok2);
     let fixed_f = floor(abs(w4.x) * 2097152.0f);
     let fixed2 = u32(fixed_f);
@@ -118,7 +118,7 @@ fn unitpack_xy16p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let t2 = floor(w4.xy / root * 127.0f);
     let t3 = w4.xy * 127.0f;
     let t4 = select(
-        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t3 < t2 * root),
+        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t2 * root > t3),
         vec2<f32>(1.0f),
         t3 >= (t2 + 1.0f) * root
     );
@@ -136,7 +136,7 @@ fn unitpack_xy16p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let cand = select(vec2<f32>(127.0f), base, base <= vec2<f32>(127.0f));
     let t10 = vec2<u32>(abs(cand));
     let t11 = t10.x * t10.x + t10.y * t10.y;
-    let t12 = select(0u, 0x3f01u - t11, t11 < 0x3f01u);
+    let t12 = select(0u, 0x3f01u - t11, 0x3f01u > t11);
     let r = f32(t12 >> 12u) * 4096.0f + f32(t12 & 0xfffu);
     let t13 = r * 272679420.0f;
     let root_estimate2 = floor(sqrt(t13));
@@ -174,7 +174,7 @@ fn unitpack_xy16p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let cand2 = select(vec2<f32>(127.0f), t14, t14 <= vec2<f32>(127.0f));
     let t15 = vec2<u32>(abs(cand2));
     let t16 = t15.x * t15.x + t15.y * t15.y;
-    let t17 = select(0u, 0x3f01u - t16, t16 < 0x3f01u);
+    let t17 = select(0u, 0x3f01u - t16, 0x3f01u > t16);
     let r2 = f32(t17 >> 12u) * 4096.0f + f32(t17 & 0xfffu);
     let t18 = r2 * 272679420.0f;
     let root_estimate3 = floor(sqrt(t18));
@@ -206,14 +206,14 @@ fn unitpack_xy16p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let hi12 = hi11 + (lo11 >> 24u);
     let lo12 = lo11 & 0xffffffu;
     let dist2 = f32(hi12) * 16777216.0f + f32(lo12);
-    let t19 = s_up <= 127.0f && base.y <= 127.0f && dist2 < dist;
+    let t19 = s_up <= 127.0f && base.y <= 127.0f && dist > dist2;
     let best = select(cand, cand2, t19);
     let best_d = select(dist, dist2, t19);
     let t20 = vec2<f32>(base.x, t_up);
     let cand3 = select(vec2<f32>(127.0f), t20, t20 <= vec2<f32>(127.0f));
     let t21 = vec2<u32>(abs(cand3));
     let t22 = t21.x * t21.x + t21.y * t21.y;
-    let t23 = select(0u, 0x3f01u - t22, t22 < 0x3f01u);
+    let t23 = select(0u, 0x3f01u - t22, 0x3f01u > t22);
     let r3 = f32(t23 >> 12u) * 4096.0f + f32(t23 & 0xfffu);
     let t24 = r3 * 272679420.0f;
     let root_estimate4 = floor(sqrt(t24));
@@ -245,14 +245,14 @@ fn unitpack_xy16p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let hi16 = hi15 + (lo15 >> 24u);
     let lo16 = lo15 & 0xffffffu;
     let dist3 = f32(hi16) * 16777216.0f + f32(lo16);
-    let t25 = base.x <= 127.0f && t_up <= 127.0f && dist3 < best_d;
+    let t25 = base.x <= 127.0f && t_up <= 127.0f && best_d > dist3;
     let best2 = select(best, cand3, t25);
     let best_d2 = select(best_d, dist3, t25);
     let t26 = base + 1.0f;
     let cand4 = select(vec2<f32>(127.0f), t26, t26 <= vec2<f32>(127.0f));
     let t27 = vec2<u32>(abs(cand4));
     let t28 = t27.x * t27.x + t27.y * t27.y;
-    let t29 = select(0u, 0x3f01u - t28, t28 < 0x3f01u);
+    let t29 = select(0u, 0x3f01u - t28, 0x3f01u > t28);
     let r4 = f32(t29 >> 12u) * 4096.0f + f32(t29 & 0xfffu);
     let t30 = r4 * 272679420.0f;
     let root_estimate5 = floor(sqrt(t30));
@@ -284,7 +284,7 @@ fn unitpack_xy16p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let hi20 = hi19 + (lo19 >> 24u);
     let lo20 = lo19 & 0xffffffu;
     let dist4 = f32(hi20) * 16777216.0f + f32(lo20);
-    let best3 = select(best2, cand4, s_up <= 127.0f && t_up <= 127.0f && dist4 < best_d2);
+    let best3 = select(best2, cand4, s_up <= 127.0f && t_up <= 127.0f && best_d2 > dist4);
     return select(vec2<f32>(0.0f), best3, ok && ok2);
 }
 

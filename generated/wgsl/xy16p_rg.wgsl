@@ -31,7 +31,7 @@ fn unitpack_xy16p_rg_decode_float(params: vec4<f32>) -> vec3<f32> {
     let p = params.xy * 2.0f - 1.0f;
     let p_sq = p * p;
     let t1 = p_sq.x + p_sq.y;
-    let d = select(1.0f, t1, t1 < 1.0f);
+    let d = select(1.0f, t1, 1.0f > t1);
     return vec3<f32>(p, sqrt(1.0f - d));
 }
 
@@ -52,7 +52,7 @@ fn unitpack_xy16p_rg_decode(code: u32) -> vec3<f32> {
 //   comparisons or rounded to a unit) is nearest the input's by exact squared distance, the first
 //   on ties.
 fn unitpack_xy16p_rg_encode_codes(v: vec3<f32>) -> vec4<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -60,12 +60,12 @@ fn unitpack_xy16p_rg_encode_codes(v: vec3<f32>) -> vec4<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let t1 = vec3<f32>(w2.xy, select(0.0f, w2.z, w2.z > 0.0f));
-    let normal2 = select(t1, vec3<f32>(0.0f), abs(t1) < vec3<f32>(1.1754944e-38f));
+    let normal2 = select(t1, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(t1));
     let abs_normal2 = abs(normal2);
     let larger2 = select(abs_normal2.y, abs_normal2.x, abs_normal2.x >= abs_normal2.y);
     let largest2 = select(abs_normal2.z, larger2, larger2 >= abs_normal2.z);
@@ -73,9 +73,9 @@ fn unitpack_xy16p_rg_encode_codes(v: vec3<f32>) -> vec4<f32> {
     let scaled2 = normal2 * scale2;
     let abs_scaled2 = abs(scaled2);
     let sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    let sum_below_16_2 = sum2 < 16.0f;
+    let sum_below_16_2 = 16.0f > sum2;
     let ok2 = sum2 >= 2.0f && sum_below_16_2;
-    let w3 = select(scaled2, vec3<f32>(0.0f), abs(scaled2) < vec3<f32>(1.8189894e-12f));
+    let w3 = select(scaled2, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled2));
     let w4 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w3, ok2);
     let fixed_f = floor(abs(w4.x) * 2097152.0f);
     let fixed2 = u32(fixed_f);
@@ -125,7 +125,7 @@ fn unitpack_xy16p_rg_encode_codes(v: vec3<f32>) -> vec4<f32> {
         + select(
             vec2<f32>(0.0f),
             select(vec2<f32>(0.0f), vec2<f32>(1.0f), t2 >= (t5 - 126.5f) * root),
-            t5 < vec2<f32>(255.0f)
+            vec2<f32>(255.0f) > t5
         );
     let t7 = select(
         vec2<f32>(0.0f),
@@ -145,7 +145,7 @@ fn unitpack_xy16p_rg_encode_codes(v: vec3<f32>) -> vec4<f32> {
     let t11 = cand + cand - 255.0f;
     let t12 = vec2<u32>(abs(t11));
     let t13 = t12.x * t12.x + t12.y * t12.y;
-    let t14 = select(0u, 0xfe01u - t13, t13 < 0xfe01u);
+    let t14 = select(0u, 0xfe01u - t13, 0xfe01u > t13);
     let r = f32(t14 >> 12u) * 4096.0f + f32(t14 & 0xfffu);
     let t15 = r * 67636240.0f;
     let root_estimate2 = floor(sqrt(t15));
@@ -184,7 +184,7 @@ fn unitpack_xy16p_rg_encode_codes(v: vec3<f32>) -> vec4<f32> {
     let t17 = cand2 + cand2 - 255.0f;
     let t18 = vec2<u32>(abs(t17));
     let t19 = t18.x * t18.x + t18.y * t18.y;
-    let t20 = select(0u, 0xfe01u - t19, t19 < 0xfe01u);
+    let t20 = select(0u, 0xfe01u - t19, 0xfe01u > t19);
     let r2 = f32(t20 >> 12u) * 4096.0f + f32(t20 & 0xfffu);
     let t21 = r2 * 67636240.0f;
     let root_estimate3 = floor(sqrt(t21));
@@ -216,7 +216,7 @@ fn unitpack_xy16p_rg_encode_codes(v: vec3<f32>) -> vec4<f32> {
     let hi12 = hi11 + (lo11 >> 24u);
     let lo12 = lo11 & 0xffffffu;
     let dist2 = f32(hi12) * 16777216.0f + f32(lo12);
-    let t22 = s_up <= 255.0f && base.y <= 255.0f && dist2 < dist;
+    let t22 = s_up <= 255.0f && base.y <= 255.0f && dist > dist2;
     let best = select(cand, cand2, t22);
     let best_d = select(dist, dist2, t22);
     let t23 = vec2<f32>(base.x, t_up);
@@ -224,7 +224,7 @@ fn unitpack_xy16p_rg_encode_codes(v: vec3<f32>) -> vec4<f32> {
     let t24 = cand3 + cand3 - 255.0f;
     let t25 = vec2<u32>(abs(t24));
     let t26 = t25.x * t25.x + t25.y * t25.y;
-    let t27 = select(0u, 0xfe01u - t26, t26 < 0xfe01u);
+    let t27 = select(0u, 0xfe01u - t26, 0xfe01u > t26);
     let r3 = f32(t27 >> 12u) * 4096.0f + f32(t27 & 0xfffu);
     let t28 = r3 * 67636240.0f;
     let root_estimate4 = floor(sqrt(t28));
@@ -256,7 +256,7 @@ fn unitpack_xy16p_rg_encode_codes(v: vec3<f32>) -> vec4<f32> {
     let hi16 = hi15 + (lo15 >> 24u);
     let lo16 = lo15 & 0xffffffu;
     let dist3 = f32(hi16) * 16777216.0f + f32(lo16);
-    let t29 = base.x <= 255.0f && t_up <= 255.0f && dist3 < best_d;
+    let t29 = base.x <= 255.0f && t_up <= 255.0f && best_d > dist3;
     let best2 = select(best, cand3, t29);
     let best_d2 = select(best_d, dist3, t29);
     let t30 = base + 1.0f;
@@ -264,7 +264,7 @@ fn unitpack_xy16p_rg_encode_codes(v: vec3<f32>) -> vec4<f32> {
     let t31 = cand4 + cand4 - 255.0f;
     let t32 = vec2<u32>(abs(t31));
     let t33 = t32.x * t32.x + t32.y * t32.y;
-    let t34 = select(0u, 0xfe01u - t33, t33 < 0xfe01u);
+    let t34 = select(0u, 0xfe01u - t33, 0xfe01u > t33);
     let r4 = f32(t34 >> 12u) * 4096.0f + f32(t34 & 0xfffu);
     let t35 = r4 * 67636240.0f;
     let root_estimate5 = floor(sqrt(t35));
@@ -296,7 +296,7 @@ fn unitpack_xy16p_rg_encode_codes(v: vec3<f32>) -> vec4<f32> {
     let hi20 = hi19 + (lo19 >> 24u);
     let lo20 = lo19 & 0xffffffu;
     let dist4 = f32(hi20) * 16777216.0f + f32(lo20);
-    let best3 = select(best2, cand4, s_up <= 255.0f && t_up <= 255.0f && dist4 < best_d2);
+    let best3 = select(best2, cand4, s_up <= 255.0f && t_up <= 255.0f && best_d2 > dist4);
     let c = select(vec2<f32>(128.0f), best3, ok && ok2);
     return vec4<f32>(c, 0.0f, 255.0f);
 }

@@ -28,7 +28,7 @@
 fn unitpack_xy32_decode_float(params: vec2<f32>) -> vec3<f32> {
     let params_sq = params * params;
     let t1 = params_sq.x + params_sq.y;
-    let d = select(1.0f, t1, t1 < 1.0f);
+    let d = select(1.0f, t1, 1.0f > t1);
     return vec3<f32>(params, sqrt(1.0f - d));
 }
 
@@ -75,7 +75,7 @@ fn unitpack_xy32_encode_float(v: vec3<f32>) -> vec2<f32> {
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 fn unitpack_xy32_round_codes(v: vec3<f32>) -> vec2<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -83,9 +83,9 @@ fn unitpack_xy32_round_codes(v: vec3<f32>) -> vec2<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let t1 = select(0.0f, w.z, w.z > 0.0f);
     let split_hi = bitcast<f32>(bitcast<u32>(w.x) & 0xfffff000u);
     let split_lo = w.x - split_hi;
@@ -113,8 +113,8 @@ fn unitpack_xy32_round_codes(v: vec3<f32>) -> vec2<f32> {
     let t4 = round(t3 / sqrt(vec2<f32>(len2)));
     let t5 = t4 + 0.5f;
     let t6 = vec2<bool>(
-        (estimate > 0.0f && big2 < lower * lower * len2),
-        estimate2 > 0.0f && big2_2 < lower2 * lower2 * len2
+        estimate > 0.0f && lower * lower * len2 > big2,
+        estimate2 > 0.0f && lower2 * lower2 * len2 > big2_2
     );
     let t7 = t4
         + select(
@@ -124,7 +124,7 @@ fn unitpack_xy32_round_codes(v: vec3<f32>) -> vec2<f32> {
         );
     let t8 = select(vec2<f32>(0.0f), t7, t7 >= vec2<f32>(0.0f));
     let t9 = select(vec2<f32>(32767.0f), t8, t8 <= vec2<f32>(32767.0f));
-    return select(vec2<f32>(0.0f), select(t9, -t9, w.xy < vec2<f32>(0.0f)), ok && len2 > 0.0f);
+    return select(vec2<f32>(0.0f), select(t9, -t9, vec2<f32>(0.0f) > w.xy), ok && len2 > 0.0f);
 }
 
 // unitpack_xy32_encode: fast encoder.

@@ -29,7 +29,7 @@
 fn unitpack_xy_signz24_decode_float(params: vec3<f32>) -> vec3<f32> {
     let t1 = params.xy * params.xy;
     let t2 = t1.x + t1.y;
-    let d = select(1.0f, t2, t2 < 1.0f);
+    let d = select(1.0f, t2, 1.0f > t2);
     return vec3<f32>(params.xy, sqrt(1.0f - d) * select(1.0f, -1.0f, params.z > 0.5f));
 }
 
@@ -73,7 +73,7 @@ fn unitpack_xy_signz24_encode_float(v: vec3<f32>) -> vec3<f32> {
     let scaled_sq = scaled * scaled;
     let len2 = scaled_sq.x + scaled_sq.y + scaled_sq.z;
     let t3 = select(vec3<f32>(0.0f, 0.0f, 1.0f), scaled / sqrt(len2), t2 && len2 >= 1.0f);
-    let one_if = select(0.0f, 1.0f, t3.z < 0.0f);
+    let one_if = select(0.0f, 1.0f, 0.0f > t3.z);
     return vec3<f32>(t3.xy, one_if);
 }
 
@@ -81,7 +81,7 @@ fn unitpack_xy_signz24_encode_float(v: vec3<f32>) -> vec3<f32> {
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 fn unitpack_xy_signz24_round_codes(v: vec3<f32>) -> vec3<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -89,9 +89,9 @@ fn unitpack_xy_signz24_round_codes(v: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let split_hi = bitcast<f32>(bitcast<u32>(w2.x) & 0xfffff000u);
     let split_lo = w2.x - split_hi;
@@ -112,7 +112,7 @@ fn unitpack_xy_signz24_round_codes(v: vec3<f32>) -> vec3<f32> {
     let big2 = big * big;
     let upper = estimate + 0.5f;
     let lower = estimate - 0.5f;
-    let step_down = select(0.0f, -1.0f, estimate > 0.0f && big2 < lower * lower * len2);
+    let step_down = select(0.0f, -1.0f, estimate > 0.0f && lower * lower * len2 > big2);
     let nudge = select(step_down, 1.0f, big2 >= upper * upper * len2);
     let t2 = estimate + nudge;
     let t3 = select(0.0f, t2, t2 >= 0.0f);
@@ -122,12 +122,12 @@ fn unitpack_xy_signz24_round_codes(v: vec3<f32>) -> vec3<f32> {
     let big2_2 = big3 * big3;
     let upper2 = estimate2 + 0.5f;
     let lower2 = estimate2 - 0.5f;
-    let step_down2 = select(0.0f, -1.0f, estimate2 > 0.0f && big2_2 < lower2 * lower2 * len2);
+    let step_down2 = select(0.0f, -1.0f, estimate2 > 0.0f && lower2 * lower2 * len2 > big2_2);
     let nudge2 = select(step_down2, 1.0f, big2_2 >= upper2 * upper2 * len2);
     let t5 = estimate2 + nudge2;
     let t6 = select(0.0f, t5, t5 >= 0.0f);
     let t7 = select(1023.0f, t6, t6 <= 1023.0f);
-    return select(vec3<f32>(t4, t7, 0.0f), vec3<f32>(-t4, -t7, 1.0f), w2 < vec3<f32>(0.0f));
+    return select(vec3<f32>(t4, t7, 0.0f), vec3<f32>(-t4, -t7, 1.0f), vec3<f32>(0.0f) > w2);
 }
 
 // unitpack_xy_signz24_encode: fast encoder.

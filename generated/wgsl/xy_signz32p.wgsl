@@ -29,7 +29,7 @@
 fn unitpack_xy_signz32p_decode_float(params: vec3<f32>) -> vec3<f32> {
     let t1 = params.xy * params.xy;
     let t2 = t1.x + t1.y;
-    let d = select(1.0f, t2, t2 < 1.0f);
+    let d = select(1.0f, t2, 1.0f > t2);
     return vec3<f32>(params.xy, sqrt(1.0f - d) * select(1.0f, -1.0f, params.z > 0.5f));
 }
 
@@ -62,7 +62,7 @@ fn unitpack_xy_signz32p_decode(code: u32) -> vec3<f32> {
 //   comparisons or rounded to a unit) is nearest the input's by exact squared distance, the first
 //   on ties.
 fn unitpack_xy_signz32p_encode_codes(v: vec3<f32>) -> vec3<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -70,9 +70,9 @@ fn unitpack_xy_signz32p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let fixed_f = floor(abs(w2.x) * 2097152.0f);
     let fixed2 = u32(fixed_f);
@@ -114,11 +114,11 @@ fn unitpack_xy_signz32p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let nudge2 = select(step_down2, 1.0f, root_m1 * root_m1 <= len2);
     let root_j = root_j0 + nudge2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
-    let one_if = select(0.0f, 1.0f, w2.z < 0.0f);
+    let one_if = select(0.0f, 1.0f, 0.0f > w2.z);
     let t1 = floor(w2.xy / root * vec2<f32>(32767.0f, 16383.0f));
     let t2 = w2.xy * vec2<f32>(32767.0f, 16383.0f);
     let t3 = select(
-        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t2 < t1 * root),
+        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t1 * root > t2),
         vec2<f32>(1.0f),
         t2 >= (t1 + 1.0f) * root
     );
@@ -206,7 +206,7 @@ fn unitpack_xy_signz32p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let hi12 = hi11 + (lo11 >> 24u);
     let lo12 = lo11 & 0xffffffu;
     let dist2 = f32(hi12) * 16777216.0f + f32(lo12);
-    let t14 = s_up <= 32767.0f && base.y <= 16383.0f && dist2 < dist;
+    let t14 = s_up <= 32767.0f && base.y <= 16383.0f && dist > dist2;
     let best = select(cand, cand2, t14);
     let best_d = select(dist, dist2, t14);
     let t15 = vec2<f32>(base.x, t_up);
@@ -245,7 +245,7 @@ fn unitpack_xy_signz32p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let hi16 = hi15 + (lo15 >> 24u);
     let lo16 = lo15 & 0xffffffu;
     let dist3 = f32(hi16) * 16777216.0f + f32(lo16);
-    let t18 = base.x <= 32767.0f && t_up <= 16383.0f && dist3 < best_d;
+    let t18 = base.x <= 32767.0f && t_up <= 16383.0f && best_d > dist3;
     let best2 = select(best, cand3, t18);
     let best_d2 = select(best_d, dist3, t18);
     let t19 = base + 1.0f;
@@ -284,7 +284,7 @@ fn unitpack_xy_signz32p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let hi20 = hi19 + (lo19 >> 24u);
     let lo20 = lo19 & 0xffffffu;
     let dist4 = f32(hi20) * 16777216.0f + f32(lo20);
-    let best3 = select(best2, cand4, s_up <= 32767.0f && t_up <= 16383.0f && dist4 < best_d2);
+    let best3 = select(best2, cand4, s_up <= 32767.0f && t_up <= 16383.0f && best_d2 > dist4);
     return vec3<f32>(best3, one_if);
 }
 

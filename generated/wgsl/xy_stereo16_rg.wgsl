@@ -56,7 +56,7 @@ fn unitpack_xy_stereo16_rg_decode(code: u32) -> vec3<f32> {
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 fn unitpack_xy_stereo16_rg_encode_float(v: vec3<f32>) -> vec4<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -64,12 +64,12 @@ fn unitpack_xy_stereo16_rg_encode_float(v: vec3<f32>) -> vec4<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let t1 = vec3<f32>(w2.xy, select(0.0f, w2.z, w2.z > 0.0f));
-    let normal2 = select(t1, vec3<f32>(0.0f), abs(t1) < vec3<f32>(1.1754944e-38f));
+    let normal2 = select(t1, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(t1));
     let abs_normal2 = abs(normal2);
     let larger2 = select(abs_normal2.y, abs_normal2.x, abs_normal2.x >= abs_normal2.y);
     let largest2 = select(abs_normal2.z, larger2, larger2 >= abs_normal2.z);
@@ -77,9 +77,9 @@ fn unitpack_xy_stereo16_rg_encode_float(v: vec3<f32>) -> vec4<f32> {
     let scaled2 = normal2 * scale2;
     let abs_scaled2 = abs(scaled2);
     let sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    let sum_below_16_2 = sum2 < 16.0f;
+    let sum_below_16_2 = 16.0f > sum2;
     let ok2 = sum2 >= 2.0f && sum_below_16_2;
-    let w3 = select(scaled2, vec3<f32>(0.0f), abs(scaled2) < vec3<f32>(1.8189894e-12f));
+    let w3 = select(scaled2, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled2));
     let w4 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w3, ok2);
     let fixed_f = floor(abs(w4.x) * 2097152.0f);
     let fixed2 = u32(fixed_f);
@@ -130,7 +130,7 @@ fn unitpack_xy_stereo16_rg_encode_float(v: vec3<f32>) -> vec4<f32> {
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 fn unitpack_xy_stereo16_rg_round_codes(v: vec3<f32>) -> vec4<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -138,12 +138,12 @@ fn unitpack_xy_stereo16_rg_round_codes(v: vec3<f32>) -> vec4<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let t1 = vec3<f32>(w2.xy, select(0.0f, w2.z, w2.z > 0.0f));
-    let normal2 = select(t1, vec3<f32>(0.0f), abs(t1) < vec3<f32>(1.1754944e-38f));
+    let normal2 = select(t1, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(t1));
     let abs_normal2 = abs(normal2);
     let larger2 = select(abs_normal2.y, abs_normal2.x, abs_normal2.x >= abs_normal2.y);
     let largest2 = select(abs_normal2.z, larger2, larger2 >= abs_normal2.z);
@@ -151,9 +151,9 @@ fn unitpack_xy_stereo16_rg_round_codes(v: vec3<f32>) -> vec4<f32> {
     let scaled2 = normal2 * scale2;
     let abs_scaled2 = abs(scaled2);
     let sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    let sum_below_16_2 = sum2 < 16.0f;
+    let sum_below_16_2 = 16.0f > sum2;
     let ok2 = sum2 >= 2.0f && sum_below_16_2;
-    let w3 = select(scaled2, vec3<f32>(0.0f), abs(scaled2) < vec3<f32>(1.8189894e-12f));
+    let w3 = select(scaled2, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled2));
     let w4 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w3, ok2);
     let fixed_f = floor(abs(w4.x) * 2097152.0f);
     let fixed2 = u32(fixed_f);
@@ -204,7 +204,7 @@ fn unitpack_xy_stereo16_rg_round_codes(v: vec3<f32>) -> vec4<f32> {
         + select(
             vec2<f32>(0.0f),
             select(vec2<f32>(0.0f), vec2<f32>(1.0f), t2 >= (t5 - 127.0f) * a),
-            t5 < vec2<f32>(255.0f)
+            vec2<f32>(255.0f) > t5
         );
     let t7 = select(
         vec2<f32>(0.0f),

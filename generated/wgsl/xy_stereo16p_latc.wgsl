@@ -52,7 +52,7 @@ fn unitpack_xy_stereo16p_latc_decode(code: u32) -> vec3<f32> {
 //   comparisons or rounded to a unit) is nearest the input's by exact squared distance, the first
 //   on ties.
 fn unitpack_xy_stereo16p_latc_encode_codes(v: vec3<f32>) -> vec4<f32> {
-    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
@@ -60,12 +60,12 @@ fn unitpack_xy_stereo16p_latc_encode_codes(v: vec3<f32>) -> vec4<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
+    let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let t1 = vec3<f32>(w2.xy, select(0.0f, w2.z, w2.z > 0.0f));
-    let normal2 = select(t1, vec3<f32>(0.0f), abs(t1) < vec3<f32>(1.1754944e-38f));
+    let normal2 = select(t1, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(t1));
     let abs_normal2 = abs(normal2);
     let larger2 = select(abs_normal2.y, abs_normal2.x, abs_normal2.x >= abs_normal2.y);
     let largest2 = select(abs_normal2.z, larger2, larger2 >= abs_normal2.z);
@@ -73,9 +73,9 @@ fn unitpack_xy_stereo16p_latc_encode_codes(v: vec3<f32>) -> vec4<f32> {
     let scaled2 = normal2 * scale2;
     let abs_scaled2 = abs(scaled2);
     let sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    let sum_below_16_2 = sum2 < 16.0f;
+    let sum_below_16_2 = 16.0f > sum2;
     let ok2 = sum2 >= 2.0f && sum_below_16_2;
-    let w3 = select(scaled2, vec3<f32>(0.0f), abs(scaled2) < vec3<f32>(1.8189894e-12f));
+    let w3 = select(scaled2, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled2));
     let w4 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w3, ok2);
     let fixed_f = floor(abs(w4.x) * 2097152.0f);
     let fixed2 = u32(fixed_f);
@@ -126,7 +126,7 @@ fn unitpack_xy_stereo16p_latc_encode_codes(v: vec3<f32>) -> vec4<f32> {
         + select(
             vec2<f32>(0.0f),
             select(vec2<f32>(0.0f), vec2<f32>(1.0f), t2 >= (t5 - 126.5f) * a),
-            t5 < vec2<f32>(255.0f)
+            vec2<f32>(255.0f) > t5
         );
     let t7 = select(
         vec2<f32>(0.0f),
@@ -221,7 +221,7 @@ fn unitpack_xy_stereo16p_latc_encode_codes(v: vec3<f32>) -> vec4<f32> {
     let hi12 = hi11 + (lo11 >> 24u);
     let lo12 = lo11 & 0xffffffu;
     let dist2 = f32(hi12) * 16777216.0f + f32(lo12);
-    let t24 = s_up <= 255.0f && base.y <= 255.0f && dist2 < dist;
+    let t24 = s_up <= 255.0f && base.y <= 255.0f && dist > dist2;
     let best = select(cand, cand2, t24);
     let best_d = select(dist, dist2, t24);
     let t25 = vec2<f32>(base.x, t_up);
@@ -263,7 +263,7 @@ fn unitpack_xy_stereo16p_latc_encode_codes(v: vec3<f32>) -> vec4<f32> {
     let hi16 = hi15 + (lo15 >> 24u);
     let lo16 = lo15 & 0xffffffu;
     let dist3 = f32(hi16) * 16777216.0f + f32(lo16);
-    let t32 = base.x <= 255.0f && t_up <= 255.0f && dist3 < best_d;
+    let t32 = base.x <= 255.0f && t_up <= 255.0f && best_d > dist3;
     let best2 = select(best, cand3, t32);
     let best_d2 = select(best_d, dist3, t32);
     let t33 = base + 1.0f;
@@ -305,7 +305,7 @@ fn unitpack_xy_stereo16p_latc_encode_codes(v: vec3<f32>) -> vec4<f32> {
     let hi20 = hi19 + (lo19 >> 24u);
     let lo20 = lo19 & 0xffffffu;
     let dist4 = f32(hi20) * 16777216.0f + f32(lo20);
-    let best3 = select(best2, cand4, s_up <= 255.0f && t_up <= 255.0f && dist4 < best_d2);
+    let best3 = select(best2, cand4, s_up <= 255.0f && t_up <= 255.0f && best_d2 > dist4);
     let c = select(vec2<f32>(128.0f), best3, ok && ok2);
     return c.yyyx;
 }

@@ -92,6 +92,12 @@ pub trait Backend {
     fn vector_compare(&self, _op: BinOp) -> Option<&'static str> {
         None
     }
+    /// Whether `a < b` is written `b > a`: the same comparison (false for NaN either way),
+    /// without the `<` after an identifier that a template-list scanner may pair with a
+    /// later `>` ([`crate::emit::lang::wgsl`]).
+    fn less_than_as_greater(&self) -> bool {
+        false
+    }
     /// `m ? t : f`, lane-wise when `mask_is_vector`.
     fn select(&self, _ty: Ty, _mask_is_vector: bool, m: &str, t: &str, f: &str) -> String {
         format!("{m} ? {t} : {f}")

@@ -392,7 +392,10 @@ impl Ctx<'_> {
                 if let Some(f) = lang.vector_compare(*b).filter(|_| arg_vec(0)) {
                     return format!("{f}({}, {})", a(0), a(1));
                 }
+                let swapped = *b == BinOp::Lt && lang.less_than_as_greater();
+                let (a0, a1) = if swapped { (a(1), a(0)) } else { (a(0), a(1)) };
                 let (op, level) = match b {
+                    BinOp::Lt if swapped => (">", prec::COMPARE),
                     BinOp::Add => ("+", prec::ADD),
                     BinOp::Sub => ("-", prec::ADD),
                     BinOp::Mul => ("*", prec::MUL),
@@ -418,14 +421,14 @@ impl Ctx<'_> {
                     prec::BITAND | prec::BITOR => (prec::UNARY, true),
                     _ => (prec::COMPARE, true),
                 };
-                let left = a(0);
+                let left = a0;
                 let left = if chains && precedence(&left) == level {
                     left
                 } else {
                     operand(left, right_max)
                 };
                 // `x - -1.0` reads badly: a negative right operand is bracketed.
-                let right = a(1);
+                let right = a1;
                 let right = if right.starts_with('-') {
                     format!("({right})")
                 } else {

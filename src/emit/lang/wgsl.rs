@@ -61,6 +61,13 @@ impl Backend for Wgsl {
             select([m, t, f])
         }
     }
+    /// The WESL linker of npm's `wesl` (0.7.31) ends its template-list discovery at `;`,
+    /// `{`, `:`, `==`, `!=`, `&&` or `||` but not at a closing bracket, as WGSL §3.9 does:
+    /// `select(select(x, y, t < u), z, t >= u)` fails to link there, `t <` read as a
+    /// template whose `>` is the later `>=`. Written `u > t`, no comparison opens one.
+    fn less_than_as_greater(&self) -> bool {
+        true
+    }
     /// WGSL's template-list discovery reads `f(a < b, c > d)` as `f(a<b, c>d)`, a template
     /// list (WGSL §3.9): an argument with a `<` at its top level is bracketed unless it is
     /// the last, whose `<` the closing `)` ends.
