@@ -69,7 +69,6 @@ pub struct Query {
         long,
         value_name = "DEG",
         num_args = 0..=1,
-        require_equals = true,
         default_missing_value = "1"
     )]
     pub filterable: Option<f64>,
@@ -82,6 +81,37 @@ pub struct Query {
     /// Only packed encoders that give the same code on every conformant GPU.
     #[arg(long)]
     pub portable: bool,
+}
+
+/// Refuses a `--format` that is no spelling of any format in the catalogue (a typo such as
+/// `rg8snrom` would otherwise read as "no spec meets it"), naming the nearest spellings.
+fn unknown_format(catalogue: &Catalogue, typed: &str) -> Result<(), Empty> {
+    let formats = || catalogue.specs.iter().flat_map(|e| &e.formats);
+    if formats().any(|x| x.matches(typed)) {
+        return Ok(());
+    }
+    let typed_lower = typed.trim().to_ascii_lowercase();
+    let mut spellings: Vec<String> = formats()
+        .flat_map(|x| x.spellings())
+        .map(str::to_ascii_lowercase)
+        .collect();
+    spellings.sort();
+    spellings.dedup();
+    let distance = |s: &String| strsim::levenshtein(&typed_lower, s);
+    let best = spellings.iter().map(distance).min().unwrap_or(usize::MAX);
+    let nearest: Vec<&str> = spellings
+        .iter()
+        .filter(|s| distance(s) == best)
+        .map(String::as_str)
+        .collect();
+    Err(Empty {
+        constraint: format!("--format {typed}"),
+        before: format!(
+            "no format the catalogue's specs are written to is spelled so; did you mean {}? \
+             (`unitpack list` names each spec's formats)",
+            nearest.join(" or ")
+        ),
+    })
 }
 
 /// One ranked spec and why it is there.
@@ -169,6 +199,9 @@ pub fn choose<'a>(
     query: &Query,
     order: Order,
 ) -> Result<Vec<Choice<'a>>, Empty> {
+    if let Some(f) = &query.format {
+        unknown_format(catalogue, f)?;
+    }
     let mut left: Vec<&Entry> = catalogue.specs.iter().collect();
     let constraints = query.constraints();
     let mut met: Vec<String> = Vec::new();

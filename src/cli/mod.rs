@@ -361,6 +361,15 @@ pub fn run(cli: Cli) -> Result<i32> {
             wgsl_import_path,
         } => {
             validate_prefix(&prefix).map_err(anyhow::Error::msg)?;
+            if wgsl_import_path.is_some() && !lang.contains(&Lang::Wgsl) {
+                anyhow::bail!(
+                    "--wgsl-import-path starts WGSL output, and --lang {} writes none: add wgsl to --lang or leave the option out",
+                    lang.iter()
+                        .map(|l| l.to_string())
+                        .collect::<Vec<_>>()
+                        .join(",")
+                );
+            }
             let specs = parse_specs(&specs)?;
             let target = include::Target {
                 out: out.as_deref(),

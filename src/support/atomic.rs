@@ -124,8 +124,29 @@ impl AtomicFile {
     /// Starts replacing `path` (see the module's policy for what is refused).
     pub fn create(path: &Path, force: bool) -> Result<AtomicFile> {
         let shown = path.to_path_buf();
-        let target = resolve(path)?;
         let cannot = |what: &str| format!("cannot write {}: {what}", shown.display());
+        // A device or FIFO is written in place. Asked first, of the path as given: the
+        // kernel follows a link such as `/dev/stdout` to a pipe, whose `/proc/self/fd/1`
+        // link names no file that `resolve` could follow.
+        #[cfg(unix)]
+        if let Ok(m) = fs::metadata(path) {
+            use std::os::unix::fs::FileTypeExt;
+            let t = m.file_type();
+            if t.is_char_device() || t.is_fifo() || t.is_socket() {
+                let file = OpenOptions::new()
+                    .write(true)
+                    .open(path)
+                    .with_context(|| cannot("cannot open it"))?;
+                return Ok(AtomicFile {
+                    shown,
+                    target: path.to_path_buf(),
+                    tmp: None,
+                    file: BufWriter::new(file),
+                    keep: None,
+                });
+            }
+        }
+        let target = resolve(path)?;
         let mut keep = None;
         match fs::metadata(&target) {
             Ok(m) if m.is_dir() => {
@@ -157,26 +178,7 @@ impl AtomicFile {
                     keep = Some((m.mode() & 0o777, m.uid(), m.gid()));
                 }
             }
-            Ok(m) => {
-                #[cfg(unix)]
-                {
-                    use std::os::unix::fs::FileTypeExt;
-                    let t = m.file_type();
-                    if t.is_char_device() || t.is_fifo() {
-                        let file = OpenOptions::new()
-                            .write(true)
-                            .open(&target)
-                            .with_context(|| cannot("cannot open it"))?;
-                        return Ok(AtomicFile {
-                            shown,
-                            target,
-                            tmp: None,
-                            file: BufWriter::new(file),
-                            keep: None,
-                        });
-                    }
-                }
-                let _ = m;
+            Ok(_) => {
                 return Err(fail(
                     io::ErrorKind::InvalidInput,
                     cannot("it is not a regular file"),

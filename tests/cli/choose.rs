@@ -120,6 +120,8 @@ fn each_constraint_filters_as_stated() {
         ),
         (vec!["--filterable"], keep(&|e| p99_at_5(e) <= 1.0)),
         (vec!["--filterable=0.1"], keep(&|e| p99_at_5(e) <= 0.1)),
+        // The bound may follow as its own argument too.
+        (vec!["--filterable", "0.1"], keep(&|e| p99_at_5(e) <= 0.1)),
         (
             vec!["--max-encode-alu", "40"],
             keep(&|e| e["alu"]["encode"].as_u64().unwrap() <= 40),
@@ -197,6 +199,16 @@ fn an_impossible_request_names_the_constraint_that_empties_the_list() {
     assert!(err.contains("16 bits, sphere"), "says what was left: {err}");
     let err = fails(&["choose", "--format", "no-such-format"], "");
     assert!(err.contains("--format no-such-format"), "{err}");
+    // A misspelt format is named as one, with the spelling meant.
+    let err = fails(&["choose", "--format", "rg8snrom"], "");
+    assert!(
+        err.contains("is spelled so") && err.contains("did you mean rg8snorm?"),
+        "{err}"
+    );
+    // A real format no spec of the other constraints is written to is not a misspelling.
+    let err = fails(&["choose", "--bits", "32", "--format", "rg8snorm"], "");
+    assert!(!err.contains("spelled so"), "{err}");
+    ok(&["choose", "--format", "VK_FORMAT_R8G8_SNORM"]);
     // A filter bound must be a positive number of degrees.
     for bad in ["--filterable=0", "--filterable=-1", "--filterable=nan"] {
         let err = fails(&["choose", bad], "");

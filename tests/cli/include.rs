@@ -633,6 +633,15 @@ fn gen_out_into_a_full_device_is_a_one_line_error() {
     assert!(Path::new("/dev/full").exists(), "the device is still there");
 }
 
+/// `--out /dev/stdout` on a pipe writes into the pipe (docs/commands.md): the link names
+/// `pipe:[…]`, no file beside which a temporary could be made.
+#[test]
+fn gen_out_to_dev_stdout_writes_into_a_pipe() {
+    let piped = ok(&["gen", "oct16", "--lang", "wgsl", "--out", "/dev/stdout"]);
+    assert!(piped.stderr.is_empty(), "{}", piped.stderr);
+    assert_eq!(piped.stdout, ok(&["gen", "oct16", "--lang", "wgsl"]).stdout);
+}
+
 #[test]
 fn gen_takes_a_comma_list_of_languages_into_a_directory() {
     let dir = tempdir();
@@ -770,6 +779,22 @@ fn gen_writes_c_headers_and_wgsl_import_paths() {
         "",
     );
     assert!(err.contains("invalid WGSL import path"), "{err}");
+    // Without WGSL output the path would be dropped without a word: refused instead.
+    let err = fails(
+        &[
+            "gen",
+            "oct16",
+            "--lang",
+            "glsl",
+            "--wgsl-import-path",
+            "unitpack::normals",
+        ],
+        "",
+    );
+    assert!(
+        err.contains("--wgsl-import-path") && err.contains("--lang glsl writes none"),
+        "{err}"
+    );
 }
 
 /// Several languages go into a directory, one file each; `--out x.txt` names a file, so it

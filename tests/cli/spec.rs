@@ -17,7 +17,10 @@ fn unknown_codec_suggests_the_nearest_and_lists_all() {
         .chars()
         .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
         .collect();
-    assert_eq!(first, "oct", "nearest match first: {err}");
+    assert_eq!(
+        first, "oct16",
+        "nearest match first, at the size typed: {err}"
+    );
     let valid = err
         .split("Valid codecs: ")
         .nth(1)
@@ -49,7 +52,21 @@ fn unknown_codec_suggests_the_nearest_and_lists_all() {
 
     let err = bad_spec("hemiokt16");
     let first = err.split("did you mean ").nth(1).unwrap();
-    assert!(first.starts_with("hemioct"), "{err}");
+    assert!(first.starts_with("hemioct16?"), "{err}");
+    // The size typed picks the spelling, and a precise `p` stays where there is one.
+    let suggested = |typed: &str| {
+        let err = bad_spec(typed);
+        let after = err
+            .split("did you mean ")
+            .nth(1)
+            .unwrap_or_else(|| panic!("{err}"));
+        after.split('?').next().unwrap().to_string()
+    };
+    assert_eq!(suggested("meshopt16"), "meshopt_oct16");
+    assert_eq!(suggested("octt16p"), "oct16p");
+    assert_eq!(suggested("meshopt_okt16p"), "meshopt_oct16");
+    // Without a size, the families' names.
+    assert_eq!(suggested("octt"), "oct");
     let err = bad_spec("");
     assert!(err.contains("unknown codec ''"), "{err}");
 }

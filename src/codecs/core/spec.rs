@@ -449,21 +449,48 @@ fn diagnose(families: Families, head: &str) -> SpecError {
 }
 
 /// Suggestions: names sharing a prefix with what was typed first, then by edit distance.
+/// Where a size was typed, whole spellings with their sizes are suggested (`octt16` →
+/// `oct16`, `meshopt16` → `meshopt_oct16`), `p` kept where the family has a precise form.
 fn unknown_codec(families: Families, given: &str) -> SpecError {
     let name: String = given.chars().take_while(|c| !c.is_ascii_digit()).collect();
-    let key = |v: &String| {
-        let related =
-            v.starts_with(name.as_str()) || (!name.is_empty() && name.starts_with(v.as_str()));
-        (!related, strsim::levenshtein(&name, v))
-    };
+    let related =
+        |v: &str| v.starts_with(name.as_str()) || (!name.is_empty() && name.starts_with(v));
+    let key = |v: &String| (!related(v), strsim::levenshtein(&name, v));
     let mut valid = valid_names_in(families);
     valid.sort_by_key(|v| (key(v), v.clone()));
-    let best = key(&valid[0]);
-    let nearest = valid
-        .iter()
-        .take_while(|v| key(v) == best)
-        .cloned()
-        .collect();
+    let nearest = if name.len() < given.len() {
+        let precise = given.ends_with('p');
+        let sized = given.strip_suffix('p').unwrap_or(given);
+        // Each spelling with a size, and whether its family has a precise form.
+        let mut spellings: Vec<(String, bool)> = families
+            .iter()
+            .flat_map(|f| {
+                let p = f.precise();
+                f.info().spellings().into_iter().map(move |(s, _)| (s, p))
+            })
+            .collect();
+        let key = |(v, _): &(String, bool)| (!related(v), strsim::levenshtein(sized, v));
+        spellings.sort_by_key(|v| (key(v), v.0.clone()));
+        let best = key(&spellings[0]);
+        spellings
+            .iter()
+            .take_while(|v| key(v) == best)
+            .map(|(v, p)| {
+                if precise && *p {
+                    format!("{v}p")
+                } else {
+                    v.clone()
+                }
+            })
+            .collect()
+    } else {
+        let best = key(&valid[0]);
+        valid
+            .iter()
+            .take_while(|v| key(v) == best)
+            .cloned()
+            .collect()
+    };
     SpecError::UnknownCodec {
         given: given.to_string(),
         nearest,
