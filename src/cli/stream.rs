@@ -367,6 +367,17 @@ fn fill(input: &mut dyn Read, buf: &mut [u8]) -> Result<usize> {
     Ok(got)
 }
 
+/// Whether the start of a binary input is text: printable ASCII and whitespace only, with
+/// a space or line break in it, as numbers typed or printed are (raw floats and codes hold
+/// other bytes almost always).
+fn looks_like_text(start: &[u8]) -> bool {
+    !start.is_empty()
+        && start
+            .iter()
+            .all(|&b| b.is_ascii_graphic() || matches!(b, b' ' | b'\t' | b'\n' | b'\r'))
+        && start.iter().any(|&b| matches!(b, b' ' | b'\t' | b'\n'))
+}
+
 fn binary_in(
     r: &mut dyn Records,
     to: Format,
@@ -389,8 +400,21 @@ fn binary_in(
         Direction::Decode if code_words == 2 => "a code is 8 bytes, u64",
         Direction::Decode => "a code is 12 bytes, 3×u32",
     };
+    // Text where raw words were asked for (`--format binary` meant for the output alone)
+    // reads as records of nonsense or ends mid-record: said once, at the start.
+    let mut text_hint = String::new();
     loop {
         let got = fill(input, &mut block)?;
+        if done == 0 && text_hint.is_empty() && looks_like_text(&block[..got.min(64)]) {
+            text_hint = "; the input looks like text: binary input is raw little-endian \
+                         words, and text in with binary out is --input-format text \
+                         --output-format binary"
+                .to_string();
+            // Records that will run: said now. Else the error below says it.
+            if got >= size {
+                eprintln!("warning: {}", &text_hint[2..]);
+            }
+        }
         let records = got / size;
         let word = |i: usize, j: usize| {
             let b = &block[i * size + 4 * j..][..4];
@@ -426,7 +450,7 @@ fn binary_in(
         }
         if got % size != 0 {
             bail!(
-                "the input ends {} bytes into record {} ({noun})",
+                "the input ends {} bytes into record {} ({noun}){text_hint}",
                 got % size,
                 done + 1
             );

@@ -695,6 +695,40 @@ fn binary_formats_are_raw_little_endian_records() {
     );
     // The two whole records before the partial one are written (to stdout).
     assert_eq!(r.out.len(), 2 * 4, "{r:?}");
+    assert!(!r.stderr.contains("looks like text"), "{r:?}");
+    // Text given as binary input (`--format binary` meant for the output) is said to be
+    // text, with the options meant: when it ends mid-record, and when it happens to fill
+    // whole records, which then encode as the nonsense they are.
+    let r = run_bytes(&["encode", "oct16", "--format", "binary"], b"0 0 1\n");
+    assert_eq!(r.code, 2, "{r:?}");
+    assert!(
+        r.stderr.contains("record 1")
+            && r.stderr.contains("looks like text")
+            && r.stderr
+                .contains("--input-format text --output-format binary"),
+        "{r:?}"
+    );
+    let r = run_bytes(
+        &["encode", "oct16", "--format", "binary"],
+        b"0 0 1\n1 0 0\n",
+    );
+    assert_eq!(r.code, 0, "{r:?}");
+    assert!(
+        r.stderr.starts_with("warning: the input looks like text"),
+        "{r:?}"
+    );
+    let r = run_bytes(
+        &[
+            "encode",
+            "oct16",
+            "--input-format",
+            "text",
+            "--output-format",
+            "binary",
+        ],
+        b"0 0 1\n",
+    );
+    assert_eq!((r.code, r.out.len()), (0, 4), "{r:?}");
     // A bad code in the second block of 8192 records: every record before it is
     // written, each the code's decode, and the error names record 8193.
     let mut codes: Vec<u8> = (0..8192u32)
