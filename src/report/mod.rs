@@ -82,6 +82,13 @@ fn num(v: f64, digits: usize) -> String {
     format!("<td class=\"n\" data-value=\"{v}\">{v:.digits$}</td>")
 }
 
+/// A figure that spans decades (an MSE), to `digits` significant digits: `1.398e-5`, where a
+/// fixed number of decimals printed meshopt_oct16's as 0.000000000.
+fn sci(v: f64, digits: usize) -> String {
+    let shown = digits.saturating_sub(1);
+    format!("<td class=\"n\" data-value=\"{v}\">{v:.shown$e}</td>")
+}
+
 fn int(v: u32) -> String {
     format!("<td class=\"n\" data-value=\"{v}\">{v}</td>")
 }
@@ -146,7 +153,7 @@ fn figure_rows(e: &Entry, samples: usize) -> Vec<String> {
             num(e.mean, 5),
         ),
         row("sample max (°)", num(e.max, 5)),
-        row("MSE", num(e.mse, 9)),
+        row("MSE", sci(e.mse, 4)),
         row("encode ALU", int(e.alu.encode)),
         row("encode_float ALU", int(e.alu.encode_float)),
         row("decode ALU", int(e.alu.decode)),

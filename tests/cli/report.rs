@@ -104,6 +104,28 @@ fn the_reports_numbers_equal_list_json() {
     let section = &oct[oct.find("id=\"oct16\"").unwrap()..];
     let row = section.lines().find(|l| l.contains("mean error")).unwrap();
     assert_eq!(values(row)[0].parse::<f64>().unwrap(), mean);
+    // Every page's MSE cell shows its value to four significant digits (a fixed count of
+    // decimals showed meshopt_oct16's as 0.000000000).
+    let meshopt = page("family/meshopt_oct16.html");
+    let mut cells = 0;
+    for p in [oct, meshopt] {
+        for row in p.lines().filter(|l| l.starts_with("<tr><th>MSE</th>")) {
+            let value: f64 = values(row)[0].parse().unwrap();
+            let shown: f64 = row
+                .split('>')
+                .nth(4)
+                .unwrap()
+                .split('<')
+                .next()
+                .unwrap()
+                .parse()
+                .unwrap();
+            assert!(value > 0.0, "{row}");
+            assert!((shown / value - 1.0).abs() < 1e-3, "{row}");
+            cells += 1;
+        }
+    }
+    assert!(cells > 10, "{cells} MSE cells");
 }
 
 /// A second run writes the same bytes (and so leaves every file as it was).
