@@ -10,6 +10,65 @@ use anyhow::{Context, Result, bail};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
+/// What `gen --lang` writes: an include in one of the four languages, or a spec's WESL
+/// module.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum GenLang {
+    Wgsl,
+    Glsl,
+    Hlsl,
+    /// C99, also valid C++: headers for CPU asset pipelines.
+    C,
+    /// One spec's WESL module, its functions named by their own names (imported as
+    /// `unitpack::<id>`), as `generate` writes into wesl/.
+    Wesl,
+}
+
+impl GenLang {
+    /// The include language, or `None` for a WESL module.
+    pub fn lang(self) -> Option<Lang> {
+        match self {
+            GenLang::Wgsl => Some(Lang::Wgsl),
+            GenLang::Glsl => Some(Lang::Glsl),
+            GenLang::Hlsl => Some(Lang::Hlsl),
+            GenLang::C => Some(Lang::C),
+            GenLang::Wesl => None,
+        }
+    }
+    /// The `--lang` value.
+    pub fn name(self) -> &'static str {
+        self.lang().map_or("wesl", Lang::name)
+    }
+    /// The extension of a file written into a directory.
+    fn ext(self) -> &'static str {
+        self.lang().map_or("wesl", Lang::ext)
+    }
+}
+
+/// The WESL module of the one spec in `specs`, whose header names the `gen` command that
+/// writes it again.
+fn wesl_text(specs: &[Spec], prefix: &str) -> Result<String> {
+    let [spec] = specs else {
+        bail!(
+            "a WESL module holds one spec (imported as unitpack::<id>): give one spec for --lang wesl, or run generate for every module"
+        );
+    };
+    if prefix != crate::emit::DEFAULT_PREFIX {
+        bail!(
+            "a WESL module's functions are named by their own names (the module path names the spec): --prefix does not apply to --lang wesl"
+        );
+    }
+    let m = crate::measure::measure(
+        std::slice::from_ref(spec),
+        Some(crate::generator::DOC_SAMPLES),
+    )
+    .remove(0);
+    Ok(crate::emit::render_wesl(
+        &m,
+        &format!("unitpack gen {spec} --lang wesl"),
+    ))
+}
+
 /// The include for `specs` (duplicates dropped: one name, one definition).
 pub fn gen_text(specs: &[Spec], lang: Lang, prefix: &str) -> String {
     gen_text_with(specs, lang, prefix, None).expect("a validated prefix renders")
@@ -55,7 +114,7 @@ fn ends_in_separator(out: &Path) -> bool {
 }
 
 /// The languages as `--lang` takes them: `wgsl,glsl`.
-fn lang_list(langs: &[Lang]) -> String {
+fn lang_list(langs: &[GenLang]) -> String {
     langs.iter().map(|l| l.name()).collect::<Vec<_>>().join(",")
 }
 
@@ -73,15 +132,18 @@ fn check_name(name: &str) -> Result<()> {
 
 /// Runs `gen`: one language to stdout or a file; any number into a directory as
 /// `DIR/<name>.<ext>`, all written or (on an error before the first rename) none.
-pub fn run(specs: &[Spec], langs: &[Lang], prefix: &str, target: Target) -> Result<i32> {
-    let mut unique: Vec<Lang> = Vec::new();
+pub fn run(specs: &[Spec], langs: &[GenLang], prefix: &str, target: Target) -> Result<i32> {
+    let mut unique: Vec<GenLang> = Vec::new();
     for l in langs {
         if !unique.contains(l) {
             unique.push(*l);
         }
     }
     let langs = &unique[..];
-    let text = |lang: Lang| gen_text_with(specs, lang, prefix, target.import_path);
+    let text = |lang: GenLang| match lang.lang() {
+        Some(lang) => gen_text_with(specs, lang, prefix, target.import_path),
+        None => wesl_text(specs, prefix),
+    };
     // `--out -` is standard output, as no --out is.
     let Some(out) = target.out.filter(|o| !output::is_stdout(o)) else {
         let [lang] = langs else {

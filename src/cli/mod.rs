@@ -129,9 +129,10 @@ pub enum Command {
     Gen {
         #[arg(required = true, value_name = "SPEC", help = SPEC_HELP)]
         specs: Vec<String>,
-        /// Languages, comma-separated (wgsl,glsl,hlsl,c); several need --out DIR/.
+        /// Languages, comma-separated (wgsl,glsl,hlsl,c, or wesl: one spec's WESL
+        /// module); several need --out DIR/.
         #[arg(long, value_enum, value_delimiter = ',', required = true)]
-        lang: Vec<Lang>,
+        lang: Vec<include::GenLang>,
         /// Prefix of every function name (WGSL has no preprocessor to avoid clashes).
         #[arg(long, default_value = DEFAULT_PREFIX)]
         prefix: String,
@@ -361,13 +362,10 @@ pub fn run(cli: Cli) -> Result<i32> {
             wgsl_import_path,
         } => {
             validate_prefix(&prefix).map_err(anyhow::Error::msg)?;
-            if wgsl_import_path.is_some() && !lang.contains(&Lang::Wgsl) {
+            if wgsl_import_path.is_some() && !lang.contains(&include::GenLang::Wgsl) {
                 anyhow::bail!(
                     "--wgsl-import-path starts WGSL output, and --lang {} writes none: add wgsl to --lang or leave the option out",
-                    lang.iter()
-                        .map(|l| l.to_string())
-                        .collect::<Vec<_>>()
-                        .join(",")
+                    lang.iter().map(|l| l.name()).collect::<Vec<_>>().join(",")
                 );
             }
             let specs = parse_specs(&specs)?;

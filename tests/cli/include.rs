@@ -633,6 +633,36 @@ fn gen_out_into_a_full_device_is_a_one_line_error() {
     assert!(Path::new("/dev/full").exists(), "the device is still there");
 }
 
+/// `gen --lang wesl` prints the spec's WESL module as `generate` writes it, its header
+/// naming the `gen` command; a module holds one spec and names its functions without a
+/// prefix, so several specs or a prefix are refused.
+#[test]
+fn gen_writes_a_specs_wesl_module() {
+    let r = ok(&["gen", "oct16", "--lang", "wesl"]);
+    let stored = std::fs::read_to_string(committed_generated().join("wesl/oct16.wesl")).unwrap();
+    assert!(
+        r.stdout
+            .contains("// Regenerate: unitpack gen oct16 --lang wesl\n")
+    );
+    assert_eq!(
+        r.stdout.replace(
+            "Regenerate: unitpack gen oct16 --lang wesl",
+            "Regenerate: unitpack generate"
+        ),
+        stored
+    );
+    let err = fails(&["gen", "oct16", "oct24", "--lang", "wesl"], "");
+    assert!(err.contains("holds one spec"), "{err}");
+    let err = fails(&["gen", "oct16", "--lang", "wesl", "--prefix", "my_"], "");
+    assert!(err.contains("--prefix does not apply"), "{err}");
+    let dir = tempdir();
+    let out = format!("{}/", dir.path().display());
+    ok(&["gen", "oct16", "--lang", "wgsl,wesl", "--out", &out]);
+    let written = std::fs::read_to_string(dir.path().join("oct16.wesl")).unwrap();
+    assert_eq!(written, r.stdout);
+    assert!(dir.path().join("oct16.wgsl").exists());
+}
+
 /// `--out /dev/stdout` on a pipe writes into the pipe (docs/commands.md): the link names
 /// `pipe:[…]`, no file beside which a temporary could be made.
 #[test]
