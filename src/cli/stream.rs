@@ -367,6 +367,12 @@ fn fill(input: &mut dyn Read, buf: &mut [u8]) -> Result<usize> {
     Ok(got)
 }
 
+/// What text given as binary input (`--format binary` meant for the output alone) is told:
+/// it reads as records of nonsense or ends mid-record.
+const TEXT_AS_BINARY: &str = "the input looks like text: binary input is raw little-endian \
+                              words, and text in with binary out is --input-format text \
+                              --output-format binary";
+
 /// Whether the start of a binary input is text: printable ASCII and whitespace only, with
 /// a space or line break in it, as numbers typed or printed are (raw floats and codes hold
 /// other bytes almost always).
@@ -402,17 +408,14 @@ fn binary_in(
     };
     // Text where raw words were asked for (`--format binary` meant for the output alone)
     // reads as records of nonsense or ends mid-record: said once, at the start.
-    let mut text_hint = String::new();
+    let mut text_hint = "";
     loop {
         let got = fill(input, &mut block)?;
         if done == 0 && text_hint.is_empty() && looks_like_text(&block[..got.min(64)]) {
-            text_hint = "; the input looks like text: binary input is raw little-endian \
-                         words, and text in with binary out is --input-format text \
-                         --output-format binary"
-                .to_string();
+            text_hint = TEXT_AS_BINARY;
             // Records that will run: said now. Else the error below says it.
             if got >= size {
-                eprintln!("warning: {}", &text_hint[2..]);
+                eprintln!("warning: {TEXT_AS_BINARY}");
             }
         }
         let records = got / size;
@@ -450,9 +453,10 @@ fn binary_in(
         }
         if got % size != 0 {
             bail!(
-                "the input ends {} bytes into record {} ({noun}){text_hint}",
+                "the input ends {} bytes into record {} ({noun}){}{text_hint}",
                 got % size,
-                done + 1
+                done + 1,
+                if text_hint.is_empty() { "" } else { "; " }
             );
         }
         if got < block.len() {
