@@ -61,7 +61,7 @@ static inline unitpack_vec3 unitpack_cry3_24p_optimized_decode_float_v(unitpack_
 }
 
 // unitpack_cry3_24p_optimized_decode_float: decoder, float form.
-// In: parameters in [0, 1], as a unorm12 fetch returns them.
+// In: parameters in [0, 1], as an rg16unorm fetch returns them.
 // Out: every code decodes to a unit vector up to rounding; codes outside the disk decode as -Z.
 // Portable within a bound (as the header says): each output component is within 1307·2^-24
 //   (7.79e-5) of what this function computes here, for every code: a bound proven by interval
@@ -475,7 +475,10 @@ static inline unitpack_vec2 unitpack_cry3_24p_optimized_encode_float_v(unitpack_
 // unitpack_cry3_24p_optimized_encode_float: precise encoder, float form.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; -Z encodes
 //   as (1, 0.5).
-// Out: the chosen codes as values in [0, 1] (c/M) for a unorm12 render target or vertex format.
+// Out: the chosen codes as values in [0, 1] (c/M) for an rg16unorm render target or unorm16x2
+//   vertex attribute.
+// Storage: 32 bits a texel: no format of the code's 24 bits has unorm12, unorm12 channels, and
+//   rg16unorm's wider channels round the fields' values.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 static inline void unitpack_cry3_24p_optimized_encode_float(const float v[3], float out[2]) {

@@ -61,7 +61,7 @@ static inline unitpack_vec3 unitpack_cry3_32_optimized_decode_float_v(unitpack_v
 }
 
 // unitpack_cry3_32_optimized_decode_float: decoder, float form.
-// In: parameters in [0, 1], as a unorm16 fetch returns them.
+// In: parameters in [0, 1], as an rg16unorm fetch returns them.
 // Out: every code decodes to a unit vector up to rounding; codes outside the disk decode as -Z.
 // Portable within a bound (as the header says): each output component is within 12947·2^-24
 //   (7.72e-4) of what this function computes here, for every code: a bound proven by interval
@@ -194,7 +194,9 @@ static inline unitpack_vec2 unitpack_cry3_32_optimized_encode_float_v(unitpack_v
 // unitpack_cry3_32_optimized_encode_float: fast encoder, float form.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; -Z encodes
 //   as (1, 0.5).
-// Out: parameters in [0, 1], unquantized, for a unorm16 render target or vertex format to round.
+// Out: parameters in [0, 1], unquantized, for an rg16unorm render target or unorm16x2 vertex
+//   attribute to round.
+// Storage: 32 bits a texel.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 static inline void unitpack_cry3_32_optimized_encode_float(const float v[3], float out[2]) {

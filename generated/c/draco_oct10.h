@@ -72,7 +72,7 @@ static inline unitpack_vec3 unitpack_draco_oct10_decode_float_v(unitpack_vec2 pa
 }
 
 // unitpack_draco_oct10_decode_float: decoder, float form.
-// In: parameters in [0, 1], as a unorm10 fetch returns them.
+// In: parameters in [0, 1], as an rgb10a2unorm fetch returns them.
 // Out: QuantizedOctahedralCoordsToUnitVector: a unit vector (to rounding) for every code Draco
 //   writes.
 // Portable within a bound (as the header says): each output component is within 65669·2^-24
@@ -319,7 +319,9 @@ static inline unitpack_vec2 unitpack_draco_oct10_encode_float_v(unitpack_vec3 v)
 // In: any vector; Draco's: NaN input and input whose L1 norm is at most 1e-6 encode as +X, (c, c);
 //   infinite input as +Z, (c, 2c), as Draco's f64 arithmetic gives (its cast is undefined where x
 //   or y is infinite).
-// Out: parameters in [0, 1], unquantized, for a unorm10 render target or vertex format to round.
+// Out: parameters in [0, 1], unquantized, for an rgb10a2unorm render target or unorm10-10-10-2
+//   vertex attribute to round.
+// Storage: 32 bits a texel.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 static inline void unitpack_draco_oct10_encode_float(const float v[3], float out[2]) {

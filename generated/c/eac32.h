@@ -134,7 +134,7 @@ static inline unitpack_vec3 unitpack_eac32_decode_float_v(unitpack_vec2 params) 
 }
 
 // unitpack_eac32_decode_float: decoder, float form.
-// In: parameters in [0, 1], as a unorm16 fetch returns them.
+// In: parameters in [0, 1], as an rg16unorm fetch returns them.
 // Out: every code decodes to a unit vector to within the trig approximations' error (about 2.5e-7);
 //   codes from 6·N² up (N = ⌊√(2^B/6)⌋) decode as code 6·N² - 1.
 // Portable within a bound (as the header says): each output component is within 35·2^-24 (2.09e-6)
@@ -366,7 +366,9 @@ static inline unitpack_vec2 unitpack_eac32_encode_float_v(unitpack_vec3 v) {
 // unitpack_eac32_encode_float: fast encoder, float form.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; ties
 //   between components go to z, then y.
-// Out: parameters in [0, 1], unquantized, for a unorm16 render target or vertex format to round.
+// Out: parameters in [0, 1], unquantized, for an rg16unorm render target or unorm16x2 vertex
+//   attribute to round.
+// Storage: 32 bits a texel.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 static inline void unitpack_eac32_encode_float(const float v[3], float out[2]) {

@@ -58,7 +58,7 @@ static inline unitpack_vec3 unitpack_eqarea32_decode_float_v(unitpack_vec3 param
 }
 
 // unitpack_eqarea32_decode_float: decoder, float form.
-// In: parameters in [0, 1], as a unorm16, unorm15, unorm1 fetch returns them.
+// In: parameters in [0, 1], as an rgba16unorm fetch returns them.
 // Out: every code decodes to a unit vector (up to rounding); codes outside the disk decode by the
 //   same formula (beyond the equator of their hemisphere, the square's corners at its opposite
 //   pole).
@@ -177,8 +177,10 @@ static inline unitpack_vec3 unitpack_eqarea32_encode_float_v(unitpack_vec3 v) {
 // unitpack_eqarea32_encode_float: fast encoder, float form.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; the equator
 //   (z = 0) is on the +Z side.
-// Out: parameters in [0, 1], unquantized, for a unorm16, unorm15, unorm1 render target or vertex
-//   format to round.
+// Out: parameters in [0, 1], unquantized, for an rgba16unorm render target or unorm16x4 vertex
+//   attribute to round.
+// Storage: 64 bits a texel: no format of the code's 32 bits has unorm16, unorm15, unorm1 channels,
+//   and rgba16unorm's wider channels round the fields' values.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 static inline void unitpack_eqarea32_encode_float(const float v[3], float out[3]) {

@@ -93,7 +93,7 @@ static inline unitpack_vec3 unitpack_eqarea_concentric22_decode_float_v(unitpack
 }
 
 // unitpack_eqarea_concentric22_decode_float: decoder, float form.
-// In: parameters in [0, 1], as a unorm11, unorm10, unorm1 fetch returns them.
+// In: parameters in [0, 1], as an rgba16unorm fetch returns them.
 // Out: every code lies on the disk, so every code decodes within its hemisphere, unit length up to
 //   rounding.
 // Portable within a bound (as the header says): each output component is within 34·2^-24 (2.03e-6)
@@ -245,8 +245,10 @@ static inline unitpack_vec3 unitpack_eqarea_concentric22_encode_float_v(unitpack
 // unitpack_eqarea_concentric22_encode_float: fast encoder, float form.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; the equator
 //   (z = 0) is on the +Z side.
-// Out: parameters in [0, 1], unquantized, for a unorm11, unorm10, unorm1 render target or vertex
-//   format to round.
+// Out: parameters in [0, 1], unquantized, for an rgba16unorm render target or unorm16x4 vertex
+//   attribute to round.
+// Storage: 64 bits a texel: no format of the code's 22 bits has unorm11, unorm10, unorm1 channels,
+//   and rgba16unorm's wider channels round the fields' values.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 static inline void unitpack_eqarea_concentric22_encode_float(const float v[3], float out[3]) {

@@ -74,7 +74,7 @@ static inline unitpack_vec3 unitpack_eqdist20p_decode_float_v(unitpack_vec3 para
 }
 
 // unitpack_eqdist20p_decode_float: decoder, float form.
-// In: parameters in [0, 1], as a unorm10, unorm9, unorm1 fetch returns them.
+// In: parameters in [0, 1], as an rgb10a2unorm fetch returns them.
 // Out: decodes are unit length to within the series' rounding (a few ULP); codes outside the disk
 //   decode by the same formula (up to 127° from their hemisphere's pole, beyond its equator).
 // Portable within a bound (as the header says): each output component is within 15·2^-24 (8.94e-7)
@@ -618,8 +618,10 @@ static inline unitpack_vec3 unitpack_eqdist20p_encode_float_v(unitpack_vec3 v) {
 // unitpack_eqdist20p_encode_float: precise encoder, float form.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; the equator
 //   (z = 0) is on the +Z side.
-// Out: the chosen codes as values in [0, 1] (c/M) for a unorm10, unorm9, unorm1 render target or
-//   vertex format.
+// Out: the chosen codes as values in [0, 1] (c/M) for an rgb10a2unorm render target or
+//   unorm10-10-10-2 vertex attribute.
+// Storage: 32 bits a texel: no format of the code's 20 bits has unorm10, unorm9, unorm1 channels,
+//   and rgb10a2unorm's wider channels round the fields' values.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 static inline void unitpack_eqdist20p_encode_float(const float v[3], float out[3]) {

@@ -67,7 +67,7 @@ static inline unitpack_vec3 unitpack_float32x3_decode_float_v(unitpack_vec3 para
 }
 
 // unitpack_float32x3_decode_float: decoder, float form.
-// In: parameters in [-1, 1], as a float32 fetch returns them.
+// In: parameters in [-1, 1], as a float32x3 fetch returns them.
 // Out: the three stored floats, exactly, without normalizing (unit length to within 2^-11 for
 //   float16 codes the encoder writes, 2^-21 for float32); a code with an infinite or NaN component,
 //   or with every component zero, decodes as +Z; a denormal float32 component is read as +0.
@@ -137,7 +137,8 @@ static inline unitpack_vec3 unitpack_float32x3_encode_float_v(unitpack_vec3 v) {
 // In: any vector; input is normalized first, then each component is rounded to the nearest f16
 //   (float32x3: to the 2^-24 grid, from the input on a 2^-21 grid of its largest component's
 //   binade); a component that rounds to zero is +0; zero, NaN and infinite input encode as +Z.
-// Out: parameters in [-1, 1], unquantized, for a float32 render target or vertex format to round.
+// Out: parameters in [-1, 1], unquantized, for a float32x3 vertex attribute to round.
+// Storage: 96 bits a texel.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 static inline void unitpack_float32x3_encode_float(const float v[3], float out[3]) {

@@ -56,7 +56,7 @@ static inline unitpack_vec3 unitpack_hemioct16p_decode_float_v(unitpack_vec2 par
 }
 
 // unitpack_hemioct16p_decode_float: decoder, float form.
-// In: parameters in [-1, 1], as a snorm8 fetch returns them.
+// In: parameters in [-1, 1], as an rg8snorm fetch returns them.
 // Out: every code decodes to a unit vector with z ≥ 0.
 // Portable within a bound (as the header says): each output component is within 21·2^-24 (1.25e-6)
 //   of what this function computes here, for every code: a bound proven by interval evaluation
@@ -332,7 +332,9 @@ static inline unitpack_vec2 unitpack_hemioct16p_encode_float_v(unitpack_vec3 v) 
 // In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and
 //   infinite input and -Z encode as +Z (the packed encoders also where x and y are below 2^-40 of
 //   |z|, within about 2^-39.5 rad of -Z, where encode_float already sees the horizon).
-// Out: the chosen codes as values in [-1, 1] (c/M) for a snorm8 render target or vertex format.
+// Out: the chosen codes as values in [-1, 1] (c/M) for an rg8snorm render target or snorm8x2 vertex
+//   attribute.
+// Storage: 16 bits a texel.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 static inline void unitpack_hemioct16p_encode_float(const float v[3], float out[2]) {

@@ -82,7 +82,7 @@ static inline unitpack_vec3 unitpack_latlong32_decode_float_v(unitpack_vec2 para
 }
 
 // unitpack_latlong32_decode_float: decoder, float form.
-// In: parameters in [0, 1], as a unorm16 fetch returns them.
+// In: parameters in [0, 1], as an rg16unorm fetch returns them.
 // Out: decodes are unit length to within the trig approximations' error (about 2.5e-7).
 // Portable within a bound (as the header says): each output component is within 7·2^-24 (4.17e-7)
 //   of what this function computes here, for every code: a bound proven by interval evaluation
@@ -178,7 +178,9 @@ static inline unitpack_vec2 unitpack_latlong32_encode_float_v(unitpack_vec3 v) {
 
 // unitpack_latlong32_encode_float: fast encoder, float form.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z (ring 0).
-// Out: parameters in [0, 1], unquantized, for a unorm16 render target or vertex format to round.
+// Out: parameters in [0, 1], unquantized, for an rg16unorm render target or unorm16x2 vertex
+//   attribute to round.
+// Storage: 32 bits a texel.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 static inline void unitpack_latlong32_encode_float(const float v[3], float out[2]) {

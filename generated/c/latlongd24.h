@@ -327,8 +327,9 @@ static inline unitpack_vec2 unitpack_latlongd24_encode_float_v(
 
 // unitpack_latlongd24_encode_float: fast encoder, float form.
 // In: as encode.
-// Out: encode's code as two unorm12 fields (low bits first) read as c/4095, for a render target of
-//   two unorm12 channels, which stores exactly that code.
+// Out: encode's code as two unorm12 fields (low bits first) read as c/4095, for an rg16unorm render
+//   target (32 bits a texel: no 24-bit format has two unorm12 channels, and its wider channels
+//   round the values; decode the packed code where the exact code matters).
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 static inline void unitpack_latlongd24_encode_float(const float v[3], uint64_t ring, float out[2]) {

@@ -61,7 +61,7 @@ static inline unitpack_vec3 unitpack_oct16_decode_float_v(unitpack_vec2 params) 
 }
 
 // unitpack_oct16_decode_float: decoder, float form.
-// In: parameters in [-1, 1], as a snorm8 fetch returns them.
+// In: parameters in [-1, 1], as an rg8snorm fetch returns them.
 // Out: every code decodes to a unit vector (normalized as v / sqrt(v·v)).
 // Portable within a bound (as the header says): each output component is within 21·2^-24 (1.25e-6)
 //   of what this function computes here, for every code: a bound proven by interval evaluation
@@ -122,7 +122,9 @@ static inline unitpack_vec2 unitpack_oct16_encode_float_v(unitpack_vec3 v) {
 
 // unitpack_oct16_encode_float: fast encoder, float form.
 // In: any vector; input need not be unit length; zero, NaN and infinite input encode as +Z.
-// Out: parameters in [-1, 1], unquantized, for a snorm8 render target or vertex format to round.
+// Out: parameters in [-1, 1], unquantized, for an rg8snorm render target or snorm8x2 vertex
+//   attribute to round.
+// Storage: 16 bits a texel.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 static inline void unitpack_oct16_encode_float(const float v[3], float out[2]) {

@@ -58,7 +58,7 @@ static inline unitpack_vec3 unitpack_paraboloid24p_decode_float_v(unitpack_vec2 
 }
 
 // unitpack_paraboloid24p_decode_float: decoder, float form.
-// In: parameters in [-1, 1], as a snorm12 fetch returns them.
+// In: parameters in [-1, 1], as an rg16snorm fetch returns them.
 // Out: every code decodes to a unit vector (up to rounding); codes outside the unit disk decode on
 //   the horizon.
 // Portable within a bound (as the header says): each output component is within 24·2^-24 (1.43e-6)
@@ -536,7 +536,10 @@ static inline unitpack_vec2 unitpack_paraboloid24p_encode_float_v(unitpack_vec3 
 // unitpack_paraboloid24p_encode_float: precise encoder, float form.
 // In: any vector; input is projected onto the +Z hemisphere first (z ← max(z, +0)); zero, NaN,
 //   infinite and -Z input encode as +Z.
-// Out: the chosen codes as values in [-1, 1] (c/M) for a snorm12 render target or vertex format.
+// Out: the chosen codes as values in [-1, 1] (c/M) for an rg16snorm render target or snorm16x2
+//   vertex attribute.
+// Storage: 32 bits a texel: no format of the code's 24 bits has snorm12, snorm12 channels, and
+//   rg16snorm's wider channels round the fields' values.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 static inline void unitpack_paraboloid24p_encode_float(const float v[3], float out[2]) {

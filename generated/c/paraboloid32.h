@@ -58,7 +58,7 @@ static inline unitpack_vec3 unitpack_paraboloid32_decode_float_v(unitpack_vec2 p
 }
 
 // unitpack_paraboloid32_decode_float: decoder, float form.
-// In: parameters in [-1, 1], as a snorm16 fetch returns them.
+// In: parameters in [-1, 1], as an rg16snorm fetch returns them.
 // Out: every code decodes to a unit vector (up to rounding); codes outside the unit disk decode on
 //   the horizon.
 // Portable within a bound (as the header says): each output component is within 27·2^-24 (1.61e-6)
@@ -199,7 +199,9 @@ static inline unitpack_vec2 unitpack_paraboloid32_encode_float_v(unitpack_vec3 v
 // unitpack_paraboloid32_encode_float: fast encoder, float form.
 // In: any vector; input is projected onto the +Z hemisphere first (z ← max(z, +0)); zero, NaN,
 //   infinite and -Z input encode as +Z.
-// Out: parameters in [-1, 1], unquantized, for a snorm16 render target or vertex format to round.
+// Out: parameters in [-1, 1], unquantized, for an rg16snorm render target or snorm16x2 vertex
+//   attribute to round.
+// Storage: 32 bits a texel.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 static inline void unitpack_paraboloid32_encode_float(const float v[3], float out[2]) {

@@ -60,7 +60,7 @@ static inline unitpack_vec3 unitpack_paraboloid_square16p_decode_float_v(unitpac
 }
 
 // unitpack_paraboloid_square16p_decode_float: decoder, float form.
-// In: parameters in [-1, 1], as a snorm8 fetch returns them.
+// In: parameters in [-1, 1], as an rg8snorm fetch returns them.
 // Out: every code decodes to a unit vector (up to rounding); the square's edges decode on the
 //   horizon.
 // Portable within a bound (as the header says): each output component is within 22·2^-24 (1.31e-6)
@@ -531,7 +531,9 @@ static inline unitpack_vec2 unitpack_paraboloid_square16p_encode_float_v(unitpac
 // unitpack_paraboloid_square16p_encode_float: precise encoder, float form.
 // In: any vector; input is projected onto the +Z hemisphere first (z ← max(z, +0)); zero, NaN,
 //   infinite and -Z input encode as +Z.
-// Out: the chosen codes as values in [-1, 1] (c/M) for a snorm8 render target or vertex format.
+// Out: the chosen codes as values in [-1, 1] (c/M) for an rg8snorm render target or snorm8x2 vertex
+//   attribute.
+// Storage: 16 bits a texel.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 static inline void unitpack_paraboloid_square16p_encode_float(const float v[3], float out[2]) {

@@ -104,7 +104,7 @@ static inline unitpack_vec3 unitpack_sfib24_decode_float_v(unitpack_vec2 params)
 }
 
 // unitpack_sfib24_decode_float: decoder, float form.
-// In: parameters in [0, 1], as a unorm12 fetch returns them.
+// In: parameters in [0, 1], as an rg16unorm fetch returns them.
 // Out: every code decodes to a unit vector to within the trig approximations' error (about 2.5e-7).
 // Portable within a bound (as the header says): each output component is within 152·2^-24 (9.06e-6)
 //   of what this function computes here, for every code: a bound proven by interval evaluation
@@ -799,7 +799,10 @@ static inline unitpack_vec2 unitpack_sfib24_encode_float_v(unitpack_vec3 v) {
 // unitpack_sfib24_encode_float: fast encoder, float form.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z (index 0);
 //   the encoder returns the nearest point to within 2^-18 (checked by brute force).
-// Out: parameters in [0, 1], unquantized, for a unorm12 render target or vertex format to round.
+// Out: parameters in [0, 1], unquantized, for an rg16unorm render target or unorm16x2 vertex
+//   attribute to round.
+// Storage: 32 bits a texel: no format of the code's 24 bits has unorm12, unorm12 channels, and
+//   rg16unorm's wider channels round the fields' values.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 static inline void unitpack_sfib24_encode_float(const float v[3], float out[2]) {

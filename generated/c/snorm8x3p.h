@@ -65,7 +65,7 @@ static inline unitpack_vec3 unitpack_snorm8x3p_decode_float_v(unitpack_vec3 para
 }
 
 // unitpack_snorm8x3p_decode_float: decoder, float form.
-// In: parameters in [-1, 1], as a snorm8 fetch returns them.
+// In: parameters in [-1, 1], as an rgba8snorm fetch returns them.
 // Out: decode re-normalizes; the all-zero code decodes as +Z.
 // Portable within a bound (as the header says): each output component is within 23·2^-24 (1.37e-6)
 //   of what this function computes here, for every code: a bound proven by interval evaluation
@@ -410,7 +410,9 @@ static inline unitpack_vec3 unitpack_snorm8x3p_encode_float_v(unitpack_vec3 v) {
 
 // unitpack_snorm8x3p_encode_float: precise encoder, float form.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z.
-// Out: the chosen codes as values in [-1, 1] (c/M) for a snorm8 render target or vertex format.
+// Out: the chosen codes as values in [-1, 1] (c/M) for an rgba8snorm render target or snorm8x4
+//   vertex attribute.
+// Storage: 32 bits a texel.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 static inline void unitpack_snorm8x3p_encode_float(const float v[3], float out[3]) {

@@ -80,7 +80,7 @@ static inline unitpack_vec3 unitpack_spherical20p_decode_float_v(unitpack_vec2 p
 }
 
 // unitpack_spherical20p_decode_float: decoder, float form.
-// In: parameters in [-1, 1], as a snorm10 fetch returns them.
+// In: parameters in [-1, 1], as an rg16snorm fetch returns them.
 // Out: decodes are unit length to within the trig approximations' error (about 2.5e-7).
 // Portable within a bound (as the header says): each output component is within 7·2^-24 (4.17e-7)
 //   of what this function computes here, for every code: a bound proven by interval evaluation
@@ -767,7 +767,10 @@ static inline unitpack_vec2 unitpack_spherical20p_encode_float_v(unitpack_vec3 v
 
 // unitpack_spherical20p_encode_float: precise encoder, float form.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z.
-// Out: the chosen codes as values in [-1, 1] (c/M) for a snorm10 render target or vertex format.
+// Out: the chosen codes as values in [-1, 1] (c/M) for an rg16snorm render target or snorm16x2
+//   vertex attribute.
+// Storage: 32 bits a texel: no format of the code's 20 bits has snorm10, snorm10 channels, and
+//   rg16snorm's wider channels round the fields' values.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 static inline void unitpack_spherical20p_encode_float(const float v[3], float out[2]) {

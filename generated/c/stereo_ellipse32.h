@@ -65,7 +65,7 @@ static inline unitpack_vec3 unitpack_stereo_ellipse32_decode_float_v(unitpack_ve
 }
 
 // unitpack_stereo_ellipse32_decode_float: decoder, float form.
-// In: parameters in [0, 1], as a unorm16, unorm15, unorm1 fetch returns them.
+// In: parameters in [0, 1], as an rgba16unorm fetch returns them.
 // Out: every code lies on the disk, so every code decodes within its hemisphere, unit length up to
 //   rounding.
 // Portable within a bound (as the header says): each output component is within 45·2^-24 (2.68e-6)
@@ -195,8 +195,10 @@ static inline unitpack_vec3 unitpack_stereo_ellipse32_encode_float_v(unitpack_ve
 // unitpack_stereo_ellipse32_encode_float: fast encoder, float form.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; the equator
 //   (z = 0) is on the +Z side.
-// Out: parameters in [0, 1], unquantized, for a unorm16, unorm15, unorm1 render target or vertex
-//   format to round.
+// Out: parameters in [0, 1], unquantized, for an rgba16unorm render target or unorm16x4 vertex
+//   attribute to round.
+// Storage: 64 bits a texel: no format of the code's 32 bits has unorm16, unorm15, unorm1 channels,
+//   and rgba16unorm's wider channels round the fields' values.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 static inline void unitpack_stereo_ellipse32_encode_float(const float v[3], float out[3]) {

@@ -56,7 +56,7 @@ static inline unitpack_vec3 unitpack_stereo_scaled32p_decode_float_v(unitpack_ve
 }
 
 // unitpack_stereo_scaled32p_decode_float: decoder, float form.
-// In: parameters in [0, 1], as a unorm16 fetch returns them.
+// In: parameters in [0, 1], as an rg16unorm fetch returns them.
 // Out: every code decodes to a unit vector (up to rounding).
 // Portable within a bound (as the header says): each output component is within 13·2^-24 (7.75e-7)
 //   of what this function computes here, for every code: a bound proven by interval evaluation
@@ -459,7 +459,9 @@ static inline unitpack_vec2 unitpack_stereo_scaled32p_encode_float_v(unitpack_ve
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; directions
 //   beyond 2·atan(scale) from +Z clamp to the square's edge; -Z, where the projection is undefined,
 //   encodes as (0, 0), the corner nearest it.
-// Out: the chosen codes as values in [0, 1] (c/M) for a unorm16 render target or vertex format.
+// Out: the chosen codes as values in [0, 1] (c/M) for an rg16unorm render target or unorm16x2
+//   vertex attribute.
+// Storage: 32 bits a texel.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 static inline void unitpack_stereo_scaled32p_encode_float(const float v[3], float out[2]) {

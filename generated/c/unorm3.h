@@ -60,7 +60,7 @@ static inline unitpack_vec3 unitpack_unorm3_decode_float_v(unitpack_vec3 params)
 }
 
 // unitpack_unorm3_decode_float: decoder, float form.
-// In: parameters in [0, 1], as a unorm8 fetch returns them.
+// In: parameters in [0, 1], as an rgba8unorm fetch returns them.
 // Out: decode re-normalizes (v / sqrt(v·v)); every code decodes to a unit vector.
 // Portable within a bound (as the header says): each output component is within 20·2^-24 (1.19e-6)
 //   of what this function computes here, for every code: a bound proven by interval evaluation
@@ -125,7 +125,9 @@ static inline unitpack_vec3 unitpack_unorm3_encode_float_v(unitpack_vec3 v) {
 
 // unitpack_unorm3_encode_float: fast encoder, float form.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z.
-// Out: parameters in [0, 1], unquantized, for a unorm8 render target or vertex format to round.
+// Out: parameters in [0, 1], unquantized, for an rgba8unorm render target or unorm8x4 vertex
+//   attribute to round.
+// Storage: 32 bits a texel.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 static inline void unitpack_unorm3_encode_float(const float v[3], float out[3]) {

@@ -55,7 +55,7 @@ static inline unitpack_vec3 unitpack_xy16p_decode_float_v(unitpack_vec2 params) 
 }
 
 // unitpack_xy16p_decode_float: decoder, float form.
-// In: parameters in [-1, 1], as a snorm8 fetch returns them.
+// In: parameters in [-1, 1], as an rg8snorm fetch returns them.
 // Out: z = sqrt(1 - saturate(x²+y²)); codes outside the unit disk decode to (x, y, 0), longer than
 //   1.
 // Portable within a bound (as the header says): each output component is within 24·2^-24 (1.43e-6)
@@ -434,7 +434,9 @@ static inline unitpack_vec2 unitpack_xy16p_encode_float_v(unitpack_vec3 v) {
 // unitpack_xy16p_encode_float: precise encoder, float form.
 // In: any vector; input is normalized onto the +Z hemisphere first (z ← max(z, +0)); zero, NaN and
 //   infinite input encode as +Z.
-// Out: the chosen codes as values in [-1, 1] (c/M) for a snorm8 render target or vertex format.
+// Out: the chosen codes as values in [-1, 1] (c/M) for an rg8snorm render target or snorm8x2 vertex
+//   attribute.
+// Storage: 16 bits a texel.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 static inline void unitpack_xy16p_encode_float(const float v[3], float out[2]) {

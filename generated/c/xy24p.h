@@ -55,7 +55,7 @@ static inline unitpack_vec3 unitpack_xy24p_decode_float_v(unitpack_vec2 params) 
 }
 
 // unitpack_xy24p_decode_float: decoder, float form.
-// In: parameters in [-1, 1], as a snorm12 fetch returns them.
+// In: parameters in [-1, 1], as an rg16snorm fetch returns them.
 // Out: z = sqrt(1 - saturate(x²+y²)); codes outside the unit disk decode to (x, y, 0), longer than
 //   1.
 // Portable within a bound (as the header says): each output component is within 401·2^-24 (2.39e-5)
@@ -434,7 +434,10 @@ static inline unitpack_vec2 unitpack_xy24p_encode_float_v(unitpack_vec3 v) {
 // unitpack_xy24p_encode_float: precise encoder, float form.
 // In: any vector; input is normalized onto the +Z hemisphere first (z ← max(z, +0)); zero, NaN and
 //   infinite input encode as +Z.
-// Out: the chosen codes as values in [-1, 1] (c/M) for a snorm12 render target or vertex format.
+// Out: the chosen codes as values in [-1, 1] (c/M) for an rg16snorm render target or snorm16x2
+//   vertex attribute.
+// Storage: 32 bits a texel: no format of the code's 24 bits has snorm12, snorm12 channels, and
+//   rg16snorm's wider channels round the fields' values.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 static inline void unitpack_xy24p_encode_float(const float v[3], float out[2]) {

@@ -55,7 +55,7 @@ static inline unitpack_vec3 unitpack_xy32_decode_float_v(unitpack_vec2 params) {
 }
 
 // unitpack_xy32_decode_float: decoder, float form.
-// In: parameters in [-1, 1], as a snorm16 fetch returns them.
+// In: parameters in [-1, 1], as an rg16snorm fetch returns them.
 // Out: z = sqrt(1 - saturate(x²+y²)); codes outside the unit disk decode to (x, y, 0), longer than
 //   1.
 // Portable within a bound (as the header says): each output component is within 6793·2^-24
@@ -140,7 +140,9 @@ static inline unitpack_vec2 unitpack_xy32_encode_float_v(unitpack_vec3 v) {
 // unitpack_xy32_encode_float: fast encoder, float form.
 // In: any vector; input is normalized onto the +Z hemisphere first (z ← max(z, +0)); zero, NaN and
 //   infinite input encode as +Z.
-// Out: parameters in [-1, 1], unquantized, for a snorm16 render target or vertex format to round.
+// Out: parameters in [-1, 1], unquantized, for an rg16snorm render target or snorm16x2 vertex
+//   attribute to round.
+// Storage: 32 bits a texel.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 static inline void unitpack_xy32_encode_float(const float v[3], float out[2]) {

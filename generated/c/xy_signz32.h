@@ -60,7 +60,7 @@ static inline unitpack_vec3 unitpack_xy_signz32_decode_float_v(unitpack_vec3 par
 }
 
 // unitpack_xy_signz32_decode_float: decoder, float form.
-// In: parameters in [-1, 1], as a snorm16, snorm15, unorm1 fetch returns them.
+// In: parameters in [-1, 1], as an rgba16snorm fetch returns them.
 // Out: z = ±sqrt(1 - saturate(x²+y²)); codes outside the unit disk decode to (x, y, ±0), longer
 //   than 1.
 // Portable within a bound (as the header says): each output component is within 6793·2^-24
@@ -135,8 +135,10 @@ static inline unitpack_vec3 unitpack_xy_signz32_encode_float_v(unitpack_vec3 v) 
 // unitpack_xy_signz32_encode_float: fast encoder, float form.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; the equator
 //   (z = 0) and -0 are on the +Z side.
-// Out: parameters in [-1, 1], unquantized, for a snorm16, snorm15, unorm1 render target or vertex
-//   format to round.
+// Out: parameters in [-1, 1], unquantized, for an rgba16snorm render target or snorm16x4 vertex
+//   attribute to round.
+// Storage: 64 bits a texel: no format of the code's 32 bits has snorm16, snorm15, unorm1 channels,
+//   and rgba16snorm's wider channels round the fields' values.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 static inline void unitpack_xy_signz32_encode_float(const float v[3], float out[3]) {

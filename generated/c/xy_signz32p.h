@@ -60,7 +60,7 @@ static inline unitpack_vec3 unitpack_xy_signz32p_decode_float_v(unitpack_vec3 pa
 }
 
 // unitpack_xy_signz32p_decode_float: decoder, float form.
-// In: parameters in [-1, 1], as a snorm16, snorm15, unorm1 fetch returns them.
+// In: parameters in [-1, 1], as an rgba16snorm fetch returns them.
 // Out: z = ±sqrt(1 - saturate(x²+y²)); codes outside the unit disk decode to (x, y, ±0), longer
 //   than 1.
 // Portable within a bound (as the header says): each output component is within 6793·2^-24
@@ -429,8 +429,10 @@ static inline unitpack_vec3 unitpack_xy_signz32p_encode_float_v(unitpack_vec3 v)
 // unitpack_xy_signz32p_encode_float: precise encoder, float form.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; the equator
 //   (z = 0) and -0 are on the +Z side.
-// Out: the chosen codes as values in [-1, 1] (c/M) for a snorm16, snorm15, unorm1 render target or
-//   vertex format.
+// Out: the chosen codes as values in [-1, 1] (c/M) for an rgba16snorm render target or snorm16x4
+//   vertex attribute.
+// Storage: 64 bits a texel: no format of the code's 32 bits has snorm16, snorm15, unorm1 channels,
+//   and rgba16snorm's wider channels round the fields' values.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 static inline void unitpack_xy_signz32p_encode_float(const float v[3], float out[3]) {

@@ -35,7 +35,7 @@ precision highp int;
 #endif
 
 // unitpack_cube16_decode_float: decoder, float form.
-// In: parameters in [0, 1], as a unorm7, unorm6, unorm3 fetch returns them.
+// In: parameters in [0, 1], as an rgba8unorm fetch returns them.
 // Out: every code decodes to a unit vector (up to rounding); faces 6 and 7 are never written and
 //   decode as +Z and -Z.
 // Portable within a bound (as the header says): each output component is within 18·2^-24 (1.07e-6)
@@ -82,8 +82,10 @@ vec3 unitpack_cube16_decode(uint code) {
 // unitpack_cube16_encode_float: fast encoder, float form.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; ties
 //   between components go to z, then y.
-// Out: parameters in [0, 1], unquantized, for a unorm7, unorm6, unorm3 render target or vertex
-//   format to round.
+// Out: parameters in [0, 1], unquantized, for an rgba8unorm render target or unorm8x4 vertex
+//   attribute to round.
+// Storage: 32 bits a texel: no format of the code's 16 bits has unorm7, unorm6, unorm3 channels,
+//   and rgba8unorm's wider channels round the fields' values.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 vec3 unitpack_cube16_encode_float(vec3 v) {

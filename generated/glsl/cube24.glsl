@@ -35,7 +35,7 @@ precision highp int;
 #endif
 
 // unitpack_cube24_decode_float: decoder, float form.
-// In: parameters in [0, 1], as a unorm11, unorm10, unorm3 fetch returns them.
+// In: parameters in [0, 1], as an rgba16unorm fetch returns them.
 // Out: every code decodes to a unit vector (up to rounding); faces 6 and 7 are never written and
 //   decode as +Z and -Z.
 // Portable within a bound (as the header says): each output component is within 21·2^-24 (1.25e-6)
@@ -84,8 +84,10 @@ vec3 unitpack_cube24_decode(uint code) {
 // unitpack_cube24_encode_float: fast encoder, float form.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; ties
 //   between components go to z, then y.
-// Out: parameters in [0, 1], unquantized, for a unorm11, unorm10, unorm3 render target or vertex
-//   format to round.
+// Out: parameters in [0, 1], unquantized, for an rgba16unorm render target or unorm16x4 vertex
+//   attribute to round.
+// Storage: 64 bits a texel: no format of the code's 24 bits has unorm11, unorm10, unorm3 channels,
+//   and rgba16unorm's wider channels round the fields' values.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 vec3 unitpack_cube24_encode_float(vec3 v) {

@@ -38,7 +38,7 @@ precision highp int;
 #endif
 
 // unitpack_draco_oct14_decode_float: decoder, float form.
-// In: parameters in [0, 1], as a unorm14 fetch returns them.
+// In: parameters in [0, 1], as an rg16unorm fetch returns them.
 // Out: QuantizedOctahedralCoordsToUnitVector: a unit vector (to rounding) for every code Draco
 //   writes.
 // Portable within a bound (as the header says): each output component is within 4101·2^-24
@@ -343,7 +343,10 @@ vec2 unitpack_draco_oct14_round_codes(vec3 v) {
 // In: any vector; Draco's: NaN input and input whose L1 norm is at most 1e-6 encode as +X, (c, c);
 //   infinite input as +Z, (c, 2c), as Draco's f64 arithmetic gives (its cast is undefined where x
 //   or y is infinite).
-// Out: parameters in [0, 1], unquantized, for a unorm14 render target or vertex format to round.
+// Out: parameters in [0, 1], unquantized, for an rg16unorm render target or unorm16x2 vertex
+//   attribute to round.
+// Storage: 32 bits a texel: no format of the code's 28 bits has unorm14, unorm14 channels, and
+//   rg16unorm's wider channels round the fields' values.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 vec2 unitpack_draco_oct14_encode_float(vec3 v) {

@@ -36,7 +36,7 @@ precision highp int;
 #endif
 
 // unitpack_eqarea16_decode_float: decoder, float form.
-// In: parameters in [0, 1], as a unorm8, unorm7, unorm1 fetch returns them.
+// In: parameters in [0, 1], as an rgba8unorm fetch returns them.
 // Out: every code decodes to a unit vector (up to rounding); codes outside the disk decode by the
 //   same formula (beyond the equator of their hemisphere, the square's corners at its opposite
 //   pole).
@@ -73,8 +73,10 @@ vec3 unitpack_eqarea16_decode(uint code) {
 // unitpack_eqarea16_encode_float: fast encoder, float form.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; the equator
 //   (z = 0) is on the +Z side.
-// Out: parameters in [0, 1], unquantized, for a unorm8, unorm7, unorm1 render target or vertex
-//   format to round.
+// Out: parameters in [0, 1], unquantized, for an rgba8unorm render target or unorm8x4 vertex
+//   attribute to round.
+// Storage: 32 bits a texel: no format of the code's 16 bits has unorm8, unorm7, unorm1 channels,
+//   and rgba8unorm's wider channels round the fields' values.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 vec3 unitpack_eqarea16_encode_float(vec3 v) {

@@ -36,7 +36,7 @@ precision highp int;
 #endif
 
 // unitpack_eqarea22p_decode_float: decoder, float form.
-// In: parameters in [0, 1], as a unorm11, unorm10, unorm1 fetch returns them.
+// In: parameters in [0, 1], as an rgba16unorm fetch returns them.
 // Out: every code decodes to a unit vector (up to rounding); codes outside the disk decode by the
 //   same formula (beyond the equator of their hemisphere, the square's corners at its opposite
 //   pole).
@@ -382,8 +382,10 @@ vec3 unitpack_eqarea22p_encode_codes(vec3 v) {
 // unitpack_eqarea22p_encode_float: precise encoder, float form.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; the equator
 //   (z = 0) is on the +Z side.
-// Out: the chosen codes as values in [0, 1] (c/M) for a unorm11, unorm10, unorm1 render target or
-//   vertex format.
+// Out: the chosen codes as values in [0, 1] (c/M) for an rgba16unorm render target or unorm16x4
+//   vertex attribute.
+// Storage: 64 bits a texel: no format of the code's 22 bits has unorm11, unorm10, unorm1 channels,
+//   and rgba16unorm's wider channels round the fields' values.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 vec3 unitpack_eqarea22p_encode_float(vec3 v) {

@@ -53,7 +53,7 @@ vec2 unitpack_eqarea_oct32_sincos_quarter_pi(float x) {
 }
 
 // unitpack_eqarea_oct32_decode_float: decoder, float form.
-// In: parameters in [-1, 1], as a snorm16 fetch returns them.
+// In: parameters in [-1, 1], as an rg16snorm fetch returns them.
 // Out: every code decodes to a unit vector (up to rounding); unfolds where |x| + |y| > 1, as oct.
 // Portable within a bound (as the header says): each output component is within 24·2^-24 (1.43e-6)
 //   of what this function computes here, for every code: a bound proven by interval evaluation
@@ -125,7 +125,9 @@ float unitpack_eqarea_oct32_atan2_pi(float x, float x1) {
 // unitpack_eqarea_oct32_encode_float: fast encoder, float form.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; folds on
 //   encode when z <= 0, as oct.
-// Out: parameters in [-1, 1], unquantized, for a snorm16 render target or vertex format to round.
+// Out: parameters in [-1, 1], unquantized, for an rg16snorm render target or snorm16x2 vertex
+//   attribute to round.
+// Storage: 32 bits a texel.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 vec2 unitpack_eqarea_oct32_encode_float(vec3 v) {

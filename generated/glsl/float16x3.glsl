@@ -36,7 +36,7 @@ precision highp int;
 #endif
 
 // unitpack_float16x3_decode_float: decoder, float form.
-// In: parameters in [-1, 1], as a float16 fetch returns them.
+// In: parameters in [-1, 1], as an rgba16float fetch returns them.
 // Out: the three stored floats, exactly, without normalizing (unit length to within 2^-11 for
 //   float16 codes the encoder writes, 2^-21 for float32); a code with an infinite or NaN component,
 //   or with every component zero, decodes as +Z; a denormal float32 component is read as +0.
@@ -80,7 +80,9 @@ vec3 unitpack_float16x3_decode(uvec2 code) {
 // In: any vector; input is normalized first, then each component is rounded to the nearest f16
 //   (float32x3: to the 2^-24 grid, from the input on a 2^-21 grid of its largest component's
 //   binade); a component that rounds to zero is +0; zero, NaN and infinite input encode as +Z.
-// Out: parameters in [-1, 1], unquantized, for a float16 render target or vertex format to round.
+// Out: parameters in [-1, 1], unquantized, for an rgba16float render target or float16x4 vertex
+//   attribute to round.
+// Storage: 64 bits a texel.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 vec3 unitpack_float16x3_encode_float(vec3 v) {

@@ -63,7 +63,7 @@ vec2 unitpack_latlong16_sincos_pi(float x) {
 }
 
 // unitpack_latlong16_decode_float: decoder, float form.
-// In: parameters in [0, 1], as a unorm8 fetch returns them.
+// In: parameters in [0, 1], as an rg8unorm fetch returns them.
 // Out: decodes are unit length to within the trig approximations' error (about 2.5e-7).
 // Portable within a bound (as the header says): each output component is within 5·2^-24 (2.98e-7)
 //   of what this function computes here, for every code: a bound proven by interval evaluation
@@ -119,7 +119,9 @@ float unitpack_latlong16_atan2_pi(float rho, float x) {
 
 // unitpack_latlong16_encode_float: fast encoder, float form.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z (ring 0).
-// Out: parameters in [0, 1], unquantized, for a unorm8 render target or vertex format to round.
+// Out: parameters in [0, 1], unquantized, for an rg8unorm render target or unorm8x2 vertex
+//   attribute to round.
+// Storage: 16 bits a texel.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 vec2 unitpack_latlong16_encode_float(vec3 v) {

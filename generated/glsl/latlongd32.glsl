@@ -280,8 +280,8 @@ uint unitpack_latlongd32_encode(vec3 v, uvec2 ring) {
 
 // unitpack_latlongd32_encode_float: fast encoder, float form.
 // In: as encode.
-// Out: encode's code as two unorm16 fields (low bits first) read as c/65535, for a render target of
-//   two unorm16 channels, which stores exactly that code.
+// Out: encode's code as two unorm16 fields (low bits first) read as c/65535, for an rg16unorm
+//   render target (32 bits a texel), which stores exactly that code.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 vec2 unitpack_latlongd32_encode_float(vec3 v, uvec2 ring) {

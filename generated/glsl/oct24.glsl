@@ -35,7 +35,7 @@ precision highp int;
 #endif
 
 // unitpack_oct24_decode_float: decoder, float form.
-// In: parameters in [-1, 1], as a snorm12 fetch returns them.
+// In: parameters in [-1, 1], as an rg16snorm fetch returns them.
 // Out: every code decodes to a unit vector (normalized as v / sqrt(v·v)).
 // Portable within a bound (as the header says): each output component is within 21·2^-24 (1.25e-6)
 //   of what this function computes here, for every code: a bound proven by interval evaluation
@@ -65,7 +65,10 @@ vec3 unitpack_oct24_decode(uint code) {
 
 // unitpack_oct24_encode_float: fast encoder, float form.
 // In: any vector; input need not be unit length; zero, NaN and infinite input encode as +Z.
-// Out: parameters in [-1, 1], unquantized, for a snorm12 render target or vertex format to round.
+// Out: parameters in [-1, 1], unquantized, for an rg16snorm render target or snorm16x2 vertex
+//   attribute to round.
+// Storage: 32 bits a texel: no format of the code's 24 bits has snorm12, snorm12 channels, and
+//   rg16snorm's wider channels round the fields' values.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 vec2 unitpack_oct24_encode_float(vec3 v) {

@@ -60,7 +60,7 @@ vec3 unitpack_oct24_rgb8_oct24_decode_float(vec2 e) {
 }
 
 // unitpack_oct24_rgb8_decode_float: decoder, float form.
-// In: parameters in [0, 1], as a unorm8 fetch returns them.
+// In: parameters in [0, 1], as an rgba8unorm fetch returns them.
 // Out: every code decodes to a unit vector (normalized as v / sqrt(v·v)).
 // Portable within a bound (as the header says): each output component is within 21·2^-24 (1.25e-6)
 //   of what this function computes here, for every code: a bound proven by interval evaluation
@@ -134,7 +134,9 @@ vec3 unitpack_oct24_rgb8_round_codes(vec3 v) {
 
 // unitpack_oct24_rgb8_encode_float: fast encoder, float form.
 // In: any vector; input need not be unit length; zero, NaN and infinite input encode as +Z.
-// Out: parameters in [0, 1], unquantized, for a unorm8 render target or vertex format to round.
+// Out: parameters in [0, 1], unquantized, for an rgba8unorm render target or unorm8x4 vertex
+//   attribute to round.
+// Storage: 32 bits a texel.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 vec3 unitpack_oct24_rgb8_encode_float(vec3 v) {

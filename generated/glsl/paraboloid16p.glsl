@@ -36,7 +36,7 @@ precision highp int;
 #endif
 
 // unitpack_paraboloid16p_decode_float: decoder, float form.
-// In: parameters in [-1, 1], as a snorm8 fetch returns them.
+// In: parameters in [-1, 1], as an rg8snorm fetch returns them.
 // Out: every code decodes to a unit vector (up to rounding); codes outside the unit disk decode on
 //   the horizon.
 // Portable within a bound (as the header says): each output component is within 21·2^-24 (1.25e-6)
@@ -442,7 +442,9 @@ vec2 unitpack_paraboloid16p_encode_codes(vec3 v) {
 // unitpack_paraboloid16p_encode_float: precise encoder, float form.
 // In: any vector; input is projected onto the +Z hemisphere first (z ← max(z, +0)); zero, NaN,
 //   infinite and -Z input encode as +Z.
-// Out: the chosen codes as values in [-1, 1] (c/M) for a snorm8 render target or vertex format.
+// Out: the chosen codes as values in [-1, 1] (c/M) for an rg8snorm render target or snorm8x2 vertex
+//   attribute.
+// Storage: 16 bits a texel.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 vec2 unitpack_paraboloid16p_encode_float(vec3 v) {

@@ -87,7 +87,7 @@ vec3 unitpack_sfib16_index_direction(uint i) {
 }
 
 // unitpack_sfib16_decode_float: decoder, float form.
-// In: parameters in [0, 1], as a unorm8 fetch returns them.
+// In: parameters in [0, 1], as an rg8unorm fetch returns them.
 // Out: every code decodes to a unit vector to within the trig approximations' error (about 2.5e-7).
 // Portable within a bound (as the header says): each output component is within 175·2^-24 (1.04e-5)
 //   of what this function computes here, for every code: a bound proven by interval evaluation
@@ -656,7 +656,9 @@ uint unitpack_sfib16_encode_index(vec3 v) {
 // unitpack_sfib16_encode_float: fast encoder, float form.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z (index 0);
 //   the encoder returns the nearest point to within 2^-18 (checked by brute force).
-// Out: parameters in [0, 1], unquantized, for a unorm8 render target or vertex format to round.
+// Out: parameters in [0, 1], unquantized, for an rg8unorm render target or unorm8x2 vertex
+//   attribute to round.
+// Storage: 16 bits a texel.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 vec2 unitpack_sfib16_encode_float(vec3 v) {

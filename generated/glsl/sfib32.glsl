@@ -87,7 +87,7 @@ vec3 unitpack_sfib32_index_direction(uint i) {
 }
 
 // unitpack_sfib32_decode_float: decoder, float form.
-// In: parameters in [0, 1], as a unorm16 fetch returns them.
+// In: parameters in [0, 1], as an rg16unorm fetch returns them.
 // Out: every code decodes to a unit vector to within the trig approximations' error (about 2.5e-7).
 // Portable within a bound (as the header says): each output component is within 152·2^-24 (9.06e-6)
 //   of what this function computes here, for every code: a bound proven by interval evaluation
@@ -740,7 +740,9 @@ uint unitpack_sfib32_encode_index(vec3 v) {
 // unitpack_sfib32_encode_float: fast encoder, float form.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z (index 0);
 //   the encoder returns the nearest point to within 2^-18 (checked by brute force).
-// Out: parameters in [0, 1], unquantized, for a unorm16 render target or vertex format to round.
+// Out: parameters in [0, 1], unquantized, for an rg16unorm render target or unorm16x2 vertex
+//   attribute to round.
+// Storage: 32 bits a texel.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 vec2 unitpack_sfib32_encode_float(vec3 v) {

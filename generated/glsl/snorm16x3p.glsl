@@ -36,7 +36,7 @@ precision highp int;
 #endif
 
 // unitpack_snorm16x3p_decode_float: decoder, float form.
-// In: parameters in [-1, 1], as a snorm16 fetch returns them.
+// In: parameters in [-1, 1], as an rgba16snorm fetch returns them.
 // Out: decode re-normalizes; the all-zero code decodes as +Z.
 // Portable within a bound (as the header says): each output component is within 23·2^-24 (1.37e-6)
 //   of what this function computes here, for every code: a bound proven by interval evaluation
@@ -288,7 +288,9 @@ vec3 unitpack_snorm16x3p_encode_codes(vec3 v) {
 
 // unitpack_snorm16x3p_encode_float: precise encoder, float form.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z.
-// Out: the chosen codes as values in [-1, 1] (c/M) for a snorm16 render target or vertex format.
+// Out: the chosen codes as values in [-1, 1] (c/M) for an rgba16snorm render target or snorm16x4
+//   vertex attribute.
+// Storage: 64 bits a texel.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 vec3 unitpack_snorm16x3p_encode_float(vec3 v) {

@@ -36,7 +36,7 @@ precision highp int;
 #endif
 
 // unitpack_spheremap32p_decode_float: decoder, float form.
-// In: parameters in [0, 1], as a unorm16 fetch returns them.
+// In: parameters in [0, 1], as an rg16unorm fetch returns them.
 // Out: every code decodes to a unit vector up to rounding; codes outside the disk decode as -Z.
 // Portable within a bound (as the header says): each output component is within 17369·2^-24
 //   (1.04e-3) of what this function computes here, for every code: a bound proven by interval
@@ -389,7 +389,9 @@ vec2 unitpack_spheremap32p_encode_codes(vec3 v) {
 // unitpack_spheremap32p_encode_float: precise encoder, float form.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; -Z encodes
 //   as (1, 0.5).
-// Out: the chosen codes as values in [0, 1] (c/M) for a unorm16 render target or vertex format.
+// Out: the chosen codes as values in [0, 1] (c/M) for an rg16unorm render target or unorm16x2
+//   vertex attribute.
+// Storage: 32 bits a texel.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 vec2 unitpack_spheremap32p_encode_float(vec3 v) {

@@ -62,7 +62,7 @@ vec2 unitpack_spherical16p_sincos_pi(float theta) {
 }
 
 // unitpack_spherical16p_decode_float: decoder, float form.
-// In: parameters in [-1, 1], as a snorm8 fetch returns them.
+// In: parameters in [-1, 1], as an rg8snorm fetch returns them.
 // Out: decodes are unit length to within the trig approximations' error (about 2.5e-7).
 // Portable within a bound (as the header says): each output component is within 7·2^-24 (4.17e-7)
 //   of what this function computes here, for every code: a bound proven by interval evaluation
@@ -710,7 +710,9 @@ vec2 unitpack_spherical16p_encode_codes(vec3 v) {
 
 // unitpack_spherical16p_encode_float: precise encoder, float form.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z.
-// Out: the chosen codes as values in [-1, 1] (c/M) for a snorm8 render target or vertex format.
+// Out: the chosen codes as values in [-1, 1] (c/M) for an rg8snorm render target or snorm8x2 vertex
+//   attribute.
+// Storage: 16 bits a texel.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 vec2 unitpack_spherical16p_encode_float(vec3 v) {

@@ -62,7 +62,7 @@ vec2 unitpack_spherical22_sincos_pi(float theta) {
 }
 
 // unitpack_spherical22_decode_float: decoder, float form.
-// In: parameters in [-1, 1], as a snorm11 fetch returns them.
+// In: parameters in [-1, 1], as an rg16snorm fetch returns them.
 // Out: decodes are unit length to within the trig approximations' error (about 2.5e-7).
 // Portable within a bound (as the header says): each output component is within 7·2^-24 (4.17e-7)
 //   of what this function computes here, for every code: a bound proven by interval evaluation
@@ -121,7 +121,10 @@ float unitpack_spherical22_atan2_pi(float rho, float x) {
 
 // unitpack_spherical22_encode_float: fast encoder, float form.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z.
-// Out: parameters in [-1, 1], unquantized, for a snorm11 render target or vertex format to round.
+// Out: parameters in [-1, 1], unquantized, for an rg16snorm render target or snorm16x2 vertex
+//   attribute to round.
+// Storage: 32 bits a texel: no format of the code's 22 bits has snorm11, snorm11 channels, and
+//   rg16snorm's wider channels round the fields' values.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 vec2 unitpack_spherical22_encode_float(vec3 v) {

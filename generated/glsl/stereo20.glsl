@@ -36,7 +36,7 @@ precision highp int;
 #endif
 
 // unitpack_stereo20_decode_float: decoder, float form.
-// In: parameters in [0, 1], as a unorm10, unorm9, unorm1 fetch returns them.
+// In: parameters in [0, 1], as an rgb10a2unorm fetch returns them.
 // Out: every code decodes to a unit vector (up to rounding); codes outside the disk decode by the
 //   same formula (beyond the equator of their hemisphere).
 // Portable within a bound (as the header says): each output component is within 7·2^-24 (4.17e-7)
@@ -70,8 +70,10 @@ vec3 unitpack_stereo20_decode(uint code) {
 // unitpack_stereo20_encode_float: fast encoder, float form.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; the equator
 //   (z = 0) is on the +Z side.
-// Out: parameters in [0, 1], unquantized, for a unorm10, unorm9, unorm1 render target or vertex
-//   format to round.
+// Out: parameters in [0, 1], unquantized, for an rgb10a2unorm render target or unorm10-10-10-2
+//   vertex attribute to round.
+// Storage: 32 bits a texel: no format of the code's 20 bits has unorm10, unorm9, unorm1 channels,
+//   and rgb10a2unorm's wider channels round the fields' values.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 vec3 unitpack_stereo20_encode_float(vec3 v) {

@@ -35,7 +35,7 @@ precision highp int;
 #endif
 
 // unitpack_stereo_scaled16_decode_float: decoder, float form.
-// In: parameters in [0, 1], as a unorm8 fetch returns them.
+// In: parameters in [0, 1], as an rg8unorm fetch returns them.
 // Out: every code decodes to a unit vector (up to rounding).
 // Portable within a bound (as the header says): each output component is within 10·2^-24 (5.96e-7)
 //   of what this function computes here, for every code: a bound proven by interval evaluation
@@ -64,7 +64,9 @@ vec3 unitpack_stereo_scaled16_decode(uint code) {
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; directions
 //   beyond 2·atan(scale) from +Z clamp to the square's edge; -Z, where the projection is undefined,
 //   encodes as (0, 0), the corner nearest it.
-// Out: parameters in [0, 1], unquantized, for a unorm8 render target or vertex format to round.
+// Out: parameters in [0, 1], unquantized, for an rg8unorm render target or unorm8x2 vertex
+//   attribute to round.
+// Storage: 16 bits a texel.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 vec2 unitpack_stereo_scaled16_encode_float(vec3 v) {

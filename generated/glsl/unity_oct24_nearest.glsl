@@ -38,7 +38,7 @@ precision highp int;
 #endif
 
 // unitpack_unity_oct24_nearest_decode_float: decoder, float form.
-// In: parameters in [0, 1], as a unorm8 fetch returns them.
+// In: parameters in [0, 1], as an rgba8unorm fetch returns them.
 // Out: UnpackNormalOctQuadEncode: a unit vector (to rounding) for every code.
 // Portable within a bound (as the header says): each output component is within 23·2^-24 (1.37e-6)
 //   of what this function computes here, for every code: a bound proven by interval evaluation
@@ -113,7 +113,9 @@ vec3 unitpack_unity_oct24_nearest_round_codes(vec3 v) {
 // In: any vector; Unity's: zero input encodes as +Z (bytes ff ff 77); -Z folds to the positive
 //   corner (ff ff ff); NaN coordinates become 0 (saturate(NaN) = 0 in D3D), so an all-NaN input
 //   gives bytes 00 00 00.
-// Out: parameters in [0, 1], unquantized, for a unorm8 render target or vertex format to round.
+// Out: parameters in [0, 1], unquantized, for an rgba8unorm render target or unorm8x4 vertex
+//   attribute to round.
+// Storage: 32 bits a texel.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 vec3 unitpack_unity_oct24_nearest_encode_float(vec3 v) {

@@ -63,7 +63,7 @@ vec2 unitpack_warpedcube32_sincos_pi(float x) {
 }
 
 // unitpack_warpedcube32_decode_float: decoder, float form.
-// In: parameters in [0, 1], as a unorm15, unorm14, unorm3 fetch returns them.
+// In: parameters in [0, 1], as an rgba16unorm fetch returns them.
 // Out: decodes are unit length to within the trig approximations' error (about 2.5e-7); faces 6 and
 //   7 are never written and decode as +Z and -Z.
 // Portable within a bound (as the header says): each output component is within 35·2^-24 (2.09e-6)
@@ -143,8 +143,10 @@ float unitpack_warpedcube32_atan2_pi(float n, float x) {
 // unitpack_warpedcube32_encode_float: fast encoder, float form.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; ties
 //   between components go to z, then y.
-// Out: parameters in [0, 1], unquantized, for a unorm15, unorm14, unorm3 render target or vertex
-//   format to round.
+// Out: parameters in [0, 1], unquantized, for an rgba16unorm render target or unorm16x4 vertex
+//   attribute to round.
+// Storage: 64 bits a texel: no format of the code's 32 bits has unorm15, unorm14, unorm3 channels,
+//   and rgba16unorm's wider channels round the fields' values.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 vec3 unitpack_warpedcube32_encode_float(vec3 v) {

@@ -35,7 +35,7 @@ precision highp int;
 #endif
 
 // unitpack_xy16p_decode_float: decoder, float form.
-// In: parameters in [-1, 1], as a snorm8 fetch returns them.
+// In: parameters in [-1, 1], as an rg8snorm fetch returns them.
 // Out: z = sqrt(1 - saturate(x²+y²)); codes outside the unit disk decode to (x, y, 0), longer than
 //   1.
 // Portable within a bound (as the header says): each output component is within 24·2^-24 (1.43e-6)
@@ -330,7 +330,9 @@ vec2 unitpack_xy16p_encode_codes(vec3 v) {
 // unitpack_xy16p_encode_float: precise encoder, float form.
 // In: any vector; input is normalized onto the +Z hemisphere first (z ← max(z, +0)); zero, NaN and
 //   infinite input encode as +Z.
-// Out: the chosen codes as values in [-1, 1] (c/M) for a snorm8 render target or vertex format.
+// Out: the chosen codes as values in [-1, 1] (c/M) for an rg8snorm render target or snorm8x2 vertex
+//   attribute.
+// Storage: 16 bits a texel.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 vec2 unitpack_xy16p_encode_float(vec3 v) {

@@ -36,7 +36,7 @@
 #define UNITPACK_CRYTEK_BFN24_HLSL
 
 // unitpack_crytek_bfn24_decode_float: decoder, float form.
-// In: parameters in [0, 1], as a unorm8 fetch returns them.
+// In: parameters in [0, 1], as an rgba8unorm fetch returns them.
 // Out: decode re-normalizes (v / sqrt(v·v)); every code decodes to a unit vector.
 // Portable within a bound (as the header says): each output component is within 20·2^-24 (1.19e-6)
 //   of what this function computes here, for every code: a bound proven by interval evaluation

@@ -59,7 +59,7 @@ float2 unitpack_eac24_sincos_pi(float x) {
 }
 
 // unitpack_eac24_decode_float: decoder, float form.
-// In: parameters in [0, 1], as a unorm12 fetch returns them.
+// In: parameters in [0, 1], as an rg16unorm fetch returns them.
 // Out: every code decodes to a unit vector to within the trig approximations' error (about 2.5e-7);
 //   codes from 6·N² up (N = ⌊√(2^B/6)⌋) decode as code 6·N² - 1.
 // Portable within a bound (as the header says): each output component is within 28·2^-24 (1.67e-6)
@@ -183,7 +183,10 @@ float3 unitpack_eac24_decode(uint code) {
 // unitpack_eac24_encode_float: fast encoder, float form.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; ties
 //   between components go to z, then y.
-// Out: parameters in [0, 1], unquantized, for a unorm12 render target or vertex format to round.
+// Out: parameters in [0, 1], unquantized, for an rg16unorm render target or unorm16x2 vertex
+//   attribute to round.
+// Storage: 32 bits a texel: no format of the code's 24 bits has unorm12, unorm12 channels, and
+//   rg16unorm's wider channels round the fields' values.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 float2 unitpack_eac24_encode_float(float3 v) {

@@ -36,7 +36,7 @@
 #define UNITPACK_EQDIST22P_HLSL
 
 // unitpack_eqdist22p_decode_float: decoder, float form.
-// In: parameters in [0, 1], as a unorm11, unorm10, unorm1 fetch returns them.
+// In: parameters in [0, 1], as an rgba16unorm fetch returns them.
 // Out: decodes are unit length to within the series' rounding (a few ULP); codes outside the disk
 //   decode by the same formula (up to 127° from their hemisphere's pole, beyond its equator).
 // Portable within a bound (as the header says): each output component is within 15·2^-24 (8.94e-7)
@@ -482,8 +482,10 @@ float3 unitpack_eqdist22p_encode_codes(float3 v) {
 // unitpack_eqdist22p_encode_float: precise encoder, float form.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; the equator
 //   (z = 0) is on the +Z side.
-// Out: the chosen codes as values in [0, 1] (c/M) for a unorm11, unorm10, unorm1 render target or
-//   vertex format.
+// Out: the chosen codes as values in [0, 1] (c/M) for an rgba16unorm render target or unorm16x4
+//   vertex attribute.
+// Storage: 64 bits a texel: no format of the code's 22 bits has unorm11, unorm10, unorm1 channels,
+//   and rgba16unorm's wider channels round the fields' values.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 float3 unitpack_eqdist22p_encode_float(float3 v) {

@@ -36,7 +36,7 @@
 #define UNITPACK_EQDIST32_HLSL
 
 // unitpack_eqdist32_decode_float: decoder, float form.
-// In: parameters in [0, 1], as a unorm16, unorm15, unorm1 fetch returns them.
+// In: parameters in [0, 1], as an rgba16unorm fetch returns them.
 // Out: decodes are unit length to within the series' rounding (a few ULP); codes outside the disk
 //   decode by the same formula (up to 127° from their hemisphere's pole, beyond its equator).
 // Portable within a bound (as the header says): each output component is within 15·2^-24 (8.94e-7)
@@ -110,8 +110,10 @@ float unitpack_eqdist32_atan2_pi(float rho, float x) {
 // unitpack_eqdist32_encode_float: fast encoder, float form.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; the equator
 //   (z = 0) is on the +Z side.
-// Out: parameters in [0, 1], unquantized, for a unorm16, unorm15, unorm1 render target or vertex
-//   format to round.
+// Out: parameters in [0, 1], unquantized, for an rgba16unorm render target or unorm16x4 vertex
+//   attribute to round.
+// Storage: 64 bits a texel: no format of the code's 32 bits has unorm16, unorm15, unorm1 channels,
+//   and rgba16unorm's wider channels round the fields' values.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 float3 unitpack_eqdist32_encode_float(float3 v) {

@@ -37,7 +37,7 @@
 #define UNITPACK_MESHOPT_OCT16_BITS12_HLSL
 
 // unitpack_meshopt_oct16_bits12_decode_float: decoder, float form.
-// In: parameters in [-1, 1], as a snorm16 fetch returns them.
+// In: parameters in [-1, 1], as an rgba16snorm fetch returns them.
 // Out: the extension's reference decoder, read as the snorm vertex fetch reads its output words: a
 //   unit vector to the output's rounding; a third word below 1 (invalid, unspecified by the
 //   extension) is read as its magnitude, at least 1.
@@ -150,7 +150,9 @@ float4 unitpack_meshopt_oct16_bits12_round_codes(float3 v) {
 // unitpack_meshopt_oct16_bits12_encode_float: fast encoder, float form.
 // In: any vector; meshoptimizer's: zero input encodes as +Z (0, 0); NaN coordinates become -M (a
 //   NaN fails both clamps' comparisons); infinite input gives NaN coordinates, so (-M, -M).
-// Out: parameters in [-1, 1], unquantized, for a snorm16 render target or vertex format to round.
+// Out: parameters in [-1, 1], unquantized, for an rgba16snorm render target or snorm16x4 vertex
+//   attribute to round.
+// Storage: 64 bits a texel.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 float4 unitpack_meshopt_oct16_bits12_encode_float(float3 v) {

@@ -36,7 +36,7 @@
 #define UNITPACK_PARABOLOID32_HLSL
 
 // unitpack_paraboloid32_decode_float: decoder, float form.
-// In: parameters in [-1, 1], as a snorm16 fetch returns them.
+// In: parameters in [-1, 1], as an rg16snorm fetch returns them.
 // Out: every code decodes to a unit vector (up to rounding); codes outside the unit disk decode on
 //   the horizon.
 // Portable within a bound (as the header says): each output component is within 27·2^-24 (1.61e-6)
@@ -68,7 +68,9 @@ float3 unitpack_paraboloid32_decode(uint code) {
 // unitpack_paraboloid32_encode_float: fast encoder, float form.
 // In: any vector; input is projected onto the +Z hemisphere first (z ← max(z, +0)); zero, NaN,
 //   infinite and -Z input encode as +Z.
-// Out: parameters in [-1, 1], unquantized, for a snorm16 render target or vertex format to round.
+// Out: parameters in [-1, 1], unquantized, for an rg16snorm render target or snorm16x2 vertex
+//   attribute to round.
+// Storage: 32 bits a texel.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 float2 unitpack_paraboloid32_encode_float(float3 v) {

@@ -37,7 +37,7 @@
 #define UNITPACK_PARABOLOID_SQUARE16_HLSL
 
 // unitpack_paraboloid_square16_decode_float: decoder, float form.
-// In: parameters in [-1, 1], as a snorm8 fetch returns them.
+// In: parameters in [-1, 1], as an rg8snorm fetch returns them.
 // Out: every code decodes to a unit vector (up to rounding); the square's edges decode on the
 //   horizon.
 // Portable within a bound (as the header says): each output component is within 22·2^-24 (1.31e-6)
@@ -128,7 +128,9 @@ float2 unitpack_paraboloid_square16_square_point(float3 u) {
 // unitpack_paraboloid_square16_encode_float: fast encoder, float form.
 // In: any vector; input is projected onto the +Z hemisphere first (z ← max(z, +0)); zero, NaN,
 //   infinite and -Z input encode as +Z.
-// Out: parameters in [-1, 1], unquantized, for a snorm8 render target or vertex format to round.
+// Out: parameters in [-1, 1], unquantized, for an rg8snorm render target or snorm8x2 vertex
+//   attribute to round.
+// Storage: 16 bits a texel.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 float2 unitpack_paraboloid_square16_encode_float(float3 v) {

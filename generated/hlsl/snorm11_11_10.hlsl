@@ -36,7 +36,7 @@
 #define UNITPACK_SNORM11_11_10_HLSL
 
 // unitpack_snorm11_11_10_decode_float: decoder, float form.
-// In: parameters in [-1, 1], as a snorm11, snorm11, snorm10 fetch returns them.
+// In: parameters in [-1, 1], as an rgba16snorm fetch returns them.
 // Out: decode re-normalizes; the all-zero code decodes as +Z.
 // Portable within a bound (as the header says): each output component is within 23·2^-24 (1.37e-6)
 //   of what this function computes here, for every code: a bound proven by interval evaluation
@@ -72,8 +72,10 @@ float3 unitpack_snorm11_11_10_decode(uint code) {
 
 // unitpack_snorm11_11_10_encode_float: fast encoder, float form.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z.
-// Out: parameters in [-1, 1], unquantized, for a snorm11, snorm11, snorm10 render target or vertex
-//   format to round.
+// Out: parameters in [-1, 1], unquantized, for an rgba16snorm render target or snorm16x4 vertex
+//   attribute to round.
+// Storage: 64 bits a texel: no format of the code's 32 bits has snorm11, snorm11, snorm10 channels,
+//   and rgba16snorm's wider channels round the fields' values.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 float3 unitpack_snorm11_11_10_encode_float(float3 v) {

@@ -36,7 +36,7 @@
 #define UNITPACK_SNORM5X3P_HLSL
 
 // unitpack_snorm5x3p_decode_float: decoder, float form.
-// In: parameters in [-1, 1], as a snorm5 fetch returns them.
+// In: parameters in [-1, 1], as an rgba8snorm fetch returns them.
 // Out: decode re-normalizes; the all-zero code decodes as +Z.
 // Portable within a bound (as the header says): each output component is within 22·2^-24 (1.31e-6)
 //   of what this function computes here, for every code: a bound proven by interval evaluation
@@ -242,7 +242,10 @@ float3 unitpack_snorm5x3p_encode_codes(float3 v) {
 
 // unitpack_snorm5x3p_encode_float: precise encoder, float form.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z.
-// Out: the chosen codes as values in [-1, 1] (c/M) for a snorm5 render target or vertex format.
+// Out: the chosen codes as values in [-1, 1] (c/M) for an rgba8snorm render target or snorm8x4
+//   vertex attribute.
+// Storage: 32 bits a texel: no format of the code's 15 bits has snorm5, snorm5, snorm5 channels,
+//   and rgba8snorm's wider channels round the fields' values.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 float3 unitpack_snorm5x3p_encode_float(float3 v) {

@@ -36,7 +36,7 @@
 #define UNITPACK_SNORM8X3_HLSL
 
 // unitpack_snorm8x3_decode_float: decoder, float form.
-// In: parameters in [-1, 1], as a snorm8 fetch returns them.
+// In: parameters in [-1, 1], as an rgba8snorm fetch returns them.
 // Out: decode re-normalizes; the all-zero code decodes as +Z.
 // Portable within a bound (as the header says): each output component is within 23·2^-24 (1.37e-6)
 //   of what this function computes here, for every code: a bound proven by interval evaluation
@@ -68,7 +68,9 @@ float3 unitpack_snorm8x3_decode(uint code) {
 
 // unitpack_snorm8x3_encode_float: fast encoder, float form.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z.
-// Out: parameters in [-1, 1], unquantized, for a snorm8 render target or vertex format to round.
+// Out: parameters in [-1, 1], unquantized, for an rgba8snorm render target or snorm8x4 vertex
+//   attribute to round.
+// Storage: 32 bits a texel.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 float3 unitpack_snorm8x3_encode_float(float3 v) {

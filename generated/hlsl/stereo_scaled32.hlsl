@@ -35,7 +35,7 @@
 #define UNITPACK_STEREO_SCALED32_HLSL
 
 // unitpack_stereo_scaled32_decode_float: decoder, float form.
-// In: parameters in [0, 1], as a unorm16 fetch returns them.
+// In: parameters in [0, 1], as an rg16unorm fetch returns them.
 // Out: every code decodes to a unit vector (up to rounding).
 // Portable within a bound (as the header says): each output component is within 13·2^-24 (7.75e-7)
 //   of what this function computes here, for every code: a bound proven by interval evaluation
@@ -64,7 +64,9 @@ float3 unitpack_stereo_scaled32_decode(uint code) {
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; directions
 //   beyond 2·atan(scale) from +Z clamp to the square's edge; -Z, where the projection is undefined,
 //   encodes as (0, 0), the corner nearest it.
-// Out: parameters in [0, 1], unquantized, for a unorm16 render target or vertex format to round.
+// Out: parameters in [0, 1], unquantized, for an rg16unorm render target or unorm16x2 vertex
+//   attribute to round.
+// Storage: 32 bits a texel.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 float2 unitpack_stereo_scaled32_encode_float(float3 v) {

@@ -58,7 +58,7 @@ float2 unitpack_warpedcube24p_sincos_pi(float x) {
 }
 
 // unitpack_warpedcube24p_decode_float: decoder, float form.
-// In: parameters in [0, 1], as a unorm11, unorm10, unorm3 fetch returns them.
+// In: parameters in [0, 1], as an rgba16unorm fetch returns them.
 // Out: decodes are unit length to within the trig approximations' error (about 2.5e-7); faces 6 and
 //   7 are never written and decode as +Z and -Z.
 // Portable within a bound (as the header says): each output component is within 28·2^-24 (1.67e-6)
@@ -685,8 +685,10 @@ float3 unitpack_warpedcube24p_encode_codes(float3 v) {
 // unitpack_warpedcube24p_encode_float: precise encoder, float form.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; ties
 //   between components go to z, then y.
-// Out: the chosen codes as values in [0, 1] (c/M) for a unorm11, unorm10, unorm3 render target or
-//   vertex format.
+// Out: the chosen codes as values in [0, 1] (c/M) for an rgba16unorm render target or unorm16x4
+//   vertex attribute.
+// Storage: 64 bits a texel: no format of the code's 24 bits has unorm11, unorm10, unorm3 channels,
+//   and rgba16unorm's wider channels round the fields' values.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 float3 unitpack_warpedcube24p_encode_float(float3 v) {

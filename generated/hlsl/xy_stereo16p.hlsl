@@ -36,7 +36,7 @@
 #define UNITPACK_XY_STEREO16P_HLSL
 
 // unitpack_xy_stereo16p_decode_float: decoder, float form.
-// In: parameters in [-1, 1], as a snorm8 fetch returns them.
+// In: parameters in [-1, 1], as an rg8snorm fetch returns them.
 // Out: every code decodes to a unit vector (up to rounding); codes outside the unit disk decode
 //   below the horizon.
 // Portable within a bound (as the header says): each output component is within 7·2^-24 (4.17e-7)
@@ -348,7 +348,9 @@ float2 unitpack_xy_stereo16p_encode_codes(float3 v) {
 // unitpack_xy_stereo16p_encode_float: precise encoder, float form.
 // In: any vector; input is normalized onto the +Z hemisphere first (z ← max(z, +0)); zero, NaN,
 //   infinite and -Z input encode as +Z.
-// Out: the chosen codes as values in [-1, 1] (c/M) for a snorm8 render target or vertex format.
+// Out: the chosen codes as values in [-1, 1] (c/M) for an rg8snorm render target or snorm8x2 vertex
+//   attribute.
+// Storage: 16 bits a texel.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 float2 unitpack_xy_stereo16p_encode_float(float3 v) {

@@ -21,7 +21,7 @@
 //   n - n' 2.089e-10, PSNR 96.80 dB.
 
 // unitpack_bevy_oct32_decode_float: decoder, float form.
-// In: parameters in [-1, 1], as a snorm16 fetch returns them.
+// In: parameters in [-1, 1], as an rg16snorm fetch returns them.
 // Out: Bevy's octahedral_decode_signed: a unit vector (to rounding) for every code.
 // Portable within a bound (as the header says): each output component is within 23·2^-24 (1.37e-6)
 //   of what this function computes here, for every code: a bound proven by interval evaluation
@@ -51,7 +51,9 @@ fn unitpack_bevy_oct32_decode(code: u32) -> vec3<f32> {
 // unitpack_bevy_oct32_encode_float: fast encoder, float form.
 // In: any vector; Bevy's: zero and NaN input encode as +Z (0, 0); infinite input too (its normalize
 //   gives NaN); -Z encodes as (-32767, -32767).
-// Out: parameters in [-1, 1], unquantized, for a snorm16 render target or vertex format to round.
+// Out: parameters in [-1, 1], unquantized, for an rg16snorm render target or snorm16x2 vertex
+//   attribute to round.
+// Storage: 32 bits a texel.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 fn unitpack_bevy_oct32_encode_float(v: vec3<f32>) -> vec2<f32> {

@@ -20,7 +20,7 @@
 //   n - n' 3.777e-7, PSNR 64.23 dB.
 
 // unitpack_crytek_bfn24_decode_float: decoder, float form.
-// In: parameters in [0, 1], as a unorm8 fetch returns them.
+// In: parameters in [0, 1], as an rgba8unorm fetch returns them.
 // Out: decode re-normalizes (v / sqrt(v·v)); every code decodes to a unit vector.
 // Portable within a bound (as the header says): each output component is within 20·2^-24 (1.19e-6)
 //   of what this function computes here, for every code: a bound proven by interval evaluation

@@ -20,7 +20,7 @@
 //   n - n' 1.740e-5, PSNR 47.60 dB.
 
 // unitpack_eqarea16p_decode_float: decoder, float form.
-// In: parameters in [0, 1], as a unorm8, unorm7, unorm1 fetch returns them.
+// In: parameters in [0, 1], as an rgba8unorm fetch returns them.
 // Out: every code decodes to a unit vector (up to rounding); codes outside the disk decode by the
 //   same formula (beyond the equator of their hemisphere, the square's corners at its opposite
 //   pole).
@@ -325,8 +325,10 @@ fn unitpack_eqarea16p_encode_codes(v: vec3<f32>) -> vec3<f32> {
 // unitpack_eqarea16p_encode_float: precise encoder, float form.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; the equator
 //   (z = 0) is on the +Z side.
-// Out: the chosen codes as values in [0, 1] (c/M) for a unorm8, unorm7, unorm1 render target or
-//   vertex format.
+// Out: the chosen codes as values in [0, 1] (c/M) for an rgba8unorm render target or unorm8x4
+//   vertex attribute.
+// Storage: 32 bits a texel: no format of the code's 16 bits has unorm8, unorm7, unorm1 channels,
+//   and rgba8unorm's wider channels round the fields' values.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 fn unitpack_eqarea16p_encode_float(v: vec3<f32>) -> vec3<f32> {

@@ -20,7 +20,7 @@
 //   n - n' 6.777e-8, PSNR 71.69 dB.
 
 // unitpack_eqdist24p_decode_float: decoder, float form.
-// In: parameters in [0, 1], as a unorm12, unorm11, unorm1 fetch returns them.
+// In: parameters in [0, 1], as an rgba16unorm fetch returns them.
 // Out: decodes are unit length to within the series' rounding (a few ULP); codes outside the disk
 //   decode by the same formula (up to 127° from their hemisphere's pole, beyond its equator).
 // Portable within a bound (as the header says): each output component is within 15·2^-24 (8.94e-7)
@@ -411,8 +411,10 @@ fn unitpack_eqdist24p_encode_codes(v: vec3<f32>) -> vec3<f32> {
 // unitpack_eqdist24p_encode_float: precise encoder, float form.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; the equator
 //   (z = 0) is on the +Z side.
-// Out: the chosen codes as values in [0, 1] (c/M) for a unorm12, unorm11, unorm1 render target or
-//   vertex format.
+// Out: the chosen codes as values in [0, 1] (c/M) for an rgba16unorm render target or unorm16x4
+//   vertex attribute.
+// Storage: 64 bits a texel: no format of the code's 24 bits has unorm12, unorm11, unorm1 channels,
+//   and rgba16unorm's wider channels round the fields' values.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 fn unitpack_eqdist24p_encode_float(v: vec3<f32>) -> vec3<f32> {

@@ -32,7 +32,7 @@ fn unitpack_eqdist_concentric16_sincos_quarter_pi(x: f32) -> vec2<f32> {
 }
 
 // unitpack_eqdist_concentric16_decode_float: decoder, float form.
-// In: parameters in [0, 1], as a unorm8, unorm7, unorm1 fetch returns them.
+// In: parameters in [0, 1], as an rgba8unorm fetch returns them.
 // Out: every code lies on the disk, so every code decodes within its hemisphere, unit length up to
 //   rounding.
 // Portable within a bound (as the header says): each output component is within 47·2^-24 (2.80e-6)
@@ -97,8 +97,10 @@ fn unitpack_eqdist_concentric16_atan2_pi(rho: f32, x: f32) -> f32 {
 // unitpack_eqdist_concentric16_encode_float: fast encoder, float form.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; the equator
 //   (z = 0) is on the +Z side.
-// Out: parameters in [0, 1], unquantized, for a unorm8, unorm7, unorm1 render target or vertex
-//   format to round.
+// Out: parameters in [0, 1], unquantized, for an rgba8unorm render target or unorm8x4 vertex
+//   attribute to round.
+// Storage: 32 bits a texel: no format of the code's 16 bits has unorm8, unorm7, unorm1 channels,
+//   and rgba8unorm's wider channels round the fields' values.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 fn unitpack_eqdist_concentric16_encode_float(v: vec3<f32>) -> vec3<f32> {

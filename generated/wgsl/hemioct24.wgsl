@@ -19,7 +19,7 @@
 //   n - n' 2.680e-8, PSNR 75.72 dB.
 
 // unitpack_hemioct24_decode_float: decoder, float form.
-// In: parameters in [-1, 1], as a snorm12 fetch returns them.
+// In: parameters in [-1, 1], as an rg16snorm fetch returns them.
 // Out: every code decodes to a unit vector with z ≥ 0.
 // Portable within a bound (as the header says): each output component is within 21·2^-24 (1.25e-6)
 //   of what this function computes here, for every code: a bound proven by interval evaluation
@@ -48,7 +48,10 @@ fn unitpack_hemioct24_decode(code: u32) -> vec3<f32> {
 // In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and
 //   infinite input and -Z encode as +Z (the packed encoders also where x and y are below 2^-40 of
 //   |z|, within about 2^-39.5 rad of -Z, where encode_float already sees the horizon).
-// Out: parameters in [-1, 1], unquantized, for a snorm12 render target or vertex format to round.
+// Out: parameters in [-1, 1], unquantized, for an rg16snorm render target or snorm16x2 vertex
+//   attribute to round.
+// Storage: 32 bits a texel: no format of the code's 24 bits has snorm12, snorm12 channels, and
+//   rg16snorm's wider channels round the fields' values.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 fn unitpack_hemioct24_encode_float(v: vec3<f32>) -> vec2<f32> {

@@ -19,7 +19,7 @@
 //   of n - n' 5.306e-5, PSNR 42.75 dB.
 
 // unitpack_lambert16_ieee_decode_float: decoder, float form.
-// In: parameters in [0, 1], as a unorm8 fetch returns them.
+// In: parameters in [0, 1], as an rg8unorm fetch returns them.
 // Out: every code decodes to a unit vector; codes outside the disk decode as -Z.
 // Portable within a bound (as the header says): each output component is within 107·2^-24 (6.38e-6)
 //   of what this function computes here, for every code: a bound proven by interval evaluation
@@ -45,7 +45,9 @@ fn unitpack_lambert16_ieee_decode(code: u32) -> vec3<f32> {
 // unitpack_lambert16_ieee_encode_float: fast encoder, float form.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; -Z encodes
 //   as (1, 0.5).
-// Out: parameters in [0, 1], unquantized, for a unorm8 render target or vertex format to round.
+// Out: parameters in [0, 1], unquantized, for an rg8unorm render target or unorm8x2 vertex
+//   attribute to round.
+// Storage: 16 bits a texel.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 fn unitpack_lambert16_ieee_encode_float(v: vec3<f32>) -> vec2<f32> {

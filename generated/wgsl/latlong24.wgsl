@@ -36,7 +36,7 @@ fn unitpack_latlong24_sincos_pi(x: f32) -> vec2<f32> {
 }
 
 // unitpack_latlong24_decode_float: decoder, float form.
-// In: parameters in [0, 1], as a unorm12 fetch returns them.
+// In: parameters in [0, 1], as an rg16unorm fetch returns them.
 // Out: decodes are unit length to within the trig approximations' error (about 2.5e-7).
 // Portable within a bound (as the header says): each output component is within 5·2^-24 (2.98e-7)
 //   of what this function computes here, for every code: a bound proven by interval evaluation
@@ -81,7 +81,10 @@ fn unitpack_latlong24_atan2_pi(rho: f32, x: f32) -> f32 {
 
 // unitpack_latlong24_encode_float: fast encoder, float form.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z (ring 0).
-// Out: parameters in [0, 1], unquantized, for a unorm12 render target or vertex format to round.
+// Out: parameters in [0, 1], unquantized, for an rg16unorm render target or unorm16x2 vertex
+//   attribute to round.
+// Storage: 32 bits a texel: no format of the code's 24 bits has unorm12, unorm12 channels, and
+//   rg16unorm's wider channels round the fields' values.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 fn unitpack_latlong24_encode_float(v: vec3<f32>) -> vec2<f32> {

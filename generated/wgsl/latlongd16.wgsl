@@ -212,8 +212,8 @@ fn unitpack_latlongd16_encode(v: vec3<f32>, ring: vec2<u32>) -> u32 {
 
 // unitpack_latlongd16_encode_float: fast encoder, float form.
 // In: as encode.
-// Out: encode's code as two unorm8 fields (low bits first) read as c/255, for a render target of
-//   two unorm8 channels, which stores exactly that code.
+// Out: encode's code as two unorm8 fields (low bits first) read as c/255, for an rg8unorm render
+//   target (16 bits a texel), which stores exactly that code.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 fn unitpack_latlongd16_encode_float(v: vec3<f32>, ring: vec2<u32>) -> vec2<f32> {

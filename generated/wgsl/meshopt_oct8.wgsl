@@ -21,7 +21,7 @@
 //   n - n' 1.909e-5, PSNR 47.19 dB.
 
 // unitpack_meshopt_oct8_decode_float: decoder, float form.
-// In: parameters in [-1, 1], as a snorm8 fetch returns them.
+// In: parameters in [-1, 1], as an rgba8snorm fetch returns them.
 // Out: the extension's reference decoder, read as the snorm vertex fetch reads its output words: a
 //   unit vector to the output's rounding; a third word below 1 (invalid, unspecified by the
 //   extension) is read as its magnitude, at least 1.
@@ -110,7 +110,9 @@ fn unitpack_meshopt_oct8_round_codes(v: vec3<f32>) -> vec4<f32> {
 // unitpack_meshopt_oct8_encode_float: fast encoder, float form.
 // In: any vector; meshoptimizer's: zero input encodes as +Z (0, 0); NaN coordinates become -M (a
 //   NaN fails both clamps' comparisons); infinite input gives NaN coordinates, so (-M, -M).
-// Out: parameters in [-1, 1], unquantized, for a snorm8 render target or vertex format to round.
+// Out: parameters in [-1, 1], unquantized, for an rgba8snorm render target or snorm8x4 vertex
+//   attribute to round.
+// Storage: 32 bits a texel.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 fn unitpack_meshopt_oct8_encode_float(v: vec3<f32>) -> vec4<f32> {

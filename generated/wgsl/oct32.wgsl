@@ -19,7 +19,7 @@
 //   n - n' 2.090e-10, PSNR 96.80 dB.
 
 // unitpack_oct32_decode_float: decoder, float form.
-// In: parameters in [-1, 1], as a snorm16 fetch returns them.
+// In: parameters in [-1, 1], as an rg16snorm fetch returns them.
 // Out: every code decodes to a unit vector (normalized as v / sqrt(v·v)).
 // Portable within a bound (as the header says): each output component is within 21·2^-24 (1.25e-6)
 //   of what this function computes here, for every code: a bound proven by interval evaluation
@@ -48,7 +48,9 @@ fn unitpack_oct32_decode(code: u32) -> vec3<f32> {
 
 // unitpack_oct32_encode_float: fast encoder, float form.
 // In: any vector; input need not be unit length; zero, NaN and infinite input encode as +Z.
-// Out: parameters in [-1, 1], unquantized, for a snorm16 render target or vertex format to round.
+// Out: parameters in [-1, 1], unquantized, for an rg16snorm render target or snorm16x2 vertex
+//   attribute to round.
+// Storage: 32 bits a texel.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 fn unitpack_oct32_encode_float(v: vec3<f32>) -> vec2<f32> {

@@ -19,7 +19,7 @@
 //   n - n' 1.735e-10, PSNR 97.61 dB.
 
 // unitpack_oct32p_decode_float: decoder, float form.
-// In: parameters in [-1, 1], as a snorm16 fetch returns them.
+// In: parameters in [-1, 1], as an rg16snorm fetch returns them.
 // Out: every code decodes to a unit vector (normalized as v / sqrt(v·v)).
 // Portable within a bound (as the header says): each output component is within 21·2^-24 (1.25e-6)
 //   of what this function computes here, for every code: a bound proven by interval evaluation
@@ -204,7 +204,9 @@ fn unitpack_oct32p_encode_codes(v: vec3<f32>) -> vec2<f32> {
 
 // unitpack_oct32p_encode_float: precise encoder, float form.
 // In: any vector; input need not be unit length; zero, NaN and infinite input encode as +Z.
-// Out: the chosen codes as values in [-1, 1] (c/M) for a snorm16 render target or vertex format.
+// Out: the chosen codes as values in [-1, 1] (c/M) for an rg16snorm render target or snorm16x2
+//   vertex attribute.
+// Storage: 32 bits a texel.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 fn unitpack_oct32p_encode_float(v: vec3<f32>) -> vec2<f32> {

@@ -21,7 +21,7 @@
 //   n - n' 6.727e-6, PSNR 51.72 dB.
 
 // unitpack_paraboloid_square16_decode_float: decoder, float form.
-// In: parameters in [-1, 1], as a snorm8 fetch returns them.
+// In: parameters in [-1, 1], as an rg8snorm fetch returns them.
 // Out: every code decodes to a unit vector (up to rounding); the square's edges decode on the
 //   horizon.
 // Portable within a bound (as the header says): each output component is within 22·2^-24 (1.31e-6)
@@ -103,7 +103,9 @@ fn unitpack_paraboloid_square16_square_point(u: vec3<f32>) -> vec2<f32> {
 // unitpack_paraboloid_square16_encode_float: fast encoder, float form.
 // In: any vector; input is projected onto the +Z hemisphere first (z ← max(z, +0)); zero, NaN,
 //   infinite and -Z input encode as +Z.
-// Out: parameters in [-1, 1], unquantized, for a snorm8 render target or vertex format to round.
+// Out: parameters in [-1, 1], unquantized, for an rg8snorm render target or snorm8x2 vertex
+//   attribute to round.
+// Storage: 16 bits a texel.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 fn unitpack_paraboloid_square16_encode_float(v: vec3<f32>) -> vec2<f32> {

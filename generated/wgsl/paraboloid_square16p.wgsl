@@ -21,7 +21,7 @@
 //   n - n' 6.561e-6, PSNR 51.83 dB.
 
 // unitpack_paraboloid_square16p_decode_float: decoder, float form.
-// In: parameters in [-1, 1], as a snorm8 fetch returns them.
+// In: parameters in [-1, 1], as an rg8snorm fetch returns them.
 // Out: every code decodes to a unit vector (up to rounding); the square's edges decode on the
 //   horizon.
 // Portable within a bound (as the header says): each output component is within 22·2^-24 (1.31e-6)
@@ -410,7 +410,9 @@ fn unitpack_paraboloid_square16p_encode_codes(v: vec3<f32>) -> vec2<f32> {
 // unitpack_paraboloid_square16p_encode_float: precise encoder, float form.
 // In: any vector; input is projected onto the +Z hemisphere first (z ← max(z, +0)); zero, NaN,
 //   infinite and -Z input encode as +Z.
-// Out: the chosen codes as values in [-1, 1] (c/M) for a snorm8 render target or vertex format.
+// Out: the chosen codes as values in [-1, 1] (c/M) for an rg8snorm render target or snorm8x2 vertex
+//   attribute.
+// Storage: 16 bits a texel.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 fn unitpack_paraboloid_square16p_encode_float(v: vec3<f32>) -> vec2<f32> {

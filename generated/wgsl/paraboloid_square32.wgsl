@@ -21,7 +21,7 @@
 //   n - n' 1.013e-10, PSNR 99.94 dB.
 
 // unitpack_paraboloid_square32_decode_float: decoder, float form.
-// In: parameters in [-1, 1], as a snorm16 fetch returns them.
+// In: parameters in [-1, 1], as an rg16snorm fetch returns them.
 // Out: every code decodes to a unit vector (up to rounding); the square's edges decode on the
 //   horizon.
 // Portable within a bound (as the header says): each output component is within 35·2^-24 (2.09e-6)
@@ -103,7 +103,9 @@ fn unitpack_paraboloid_square32_square_point(u: vec3<f32>) -> vec2<f32> {
 // unitpack_paraboloid_square32_encode_float: fast encoder, float form.
 // In: any vector; input is projected onto the +Z hemisphere first (z ← max(z, +0)); zero, NaN,
 //   infinite and -Z input encode as +Z.
-// Out: parameters in [-1, 1], unquantized, for a snorm16 render target or vertex format to round.
+// Out: parameters in [-1, 1], unquantized, for an rg16snorm render target or snorm16x2 vertex
+//   attribute to round.
+// Storage: 32 bits a texel.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 fn unitpack_paraboloid_square32_encode_float(v: vec3<f32>) -> vec2<f32> {

@@ -20,7 +20,7 @@
 //   n - n' 5.975e-9, PSNR 82.24 dB.
 
 // unitpack_snorm10x3p_decode_float: decoder, float form.
-// In: parameters in [-1, 1], as a snorm10 fetch returns them.
+// In: parameters in [-1, 1], as an rgba16snorm fetch returns them.
 // Out: decode re-normalizes; the all-zero code decodes as +Z.
 // Portable within a bound (as the header says): each output component is within 23·2^-24 (1.37e-6)
 //   of what this function computes here, for every code: a bound proven by interval evaluation
@@ -271,7 +271,10 @@ fn unitpack_snorm10x3p_encode_codes(v: vec3<f32>) -> vec3<f32> {
 
 // unitpack_snorm10x3p_encode_float: precise encoder, float form.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z.
-// Out: the chosen codes as values in [-1, 1] (c/M) for a snorm10 render target or vertex format.
+// Out: the chosen codes as values in [-1, 1] (c/M) for an rgba16snorm render target or snorm16x4
+//   vertex attribute.
+// Storage: 64 bits a texel: no format of the code's 30 bits has snorm10, snorm10, snorm10 channels,
+//   and rgba16snorm's wider channels round the fields' values.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 fn unitpack_snorm10x3p_encode_float(v: vec3<f32>) -> vec3<f32> {

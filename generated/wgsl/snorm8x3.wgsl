@@ -20,7 +20,7 @@
 //   n - n' 3.454e-6, PSNR 54.62 dB.
 
 // unitpack_snorm8x3_decode_float: decoder, float form.
-// In: parameters in [-1, 1], as a snorm8 fetch returns them.
+// In: parameters in [-1, 1], as an rgba8snorm fetch returns them.
 // Out: decode re-normalizes; the all-zero code decodes as +Z.
 // Portable within a bound (as the header says): each output component is within 23·2^-24 (1.37e-6)
 //   of what this function computes here, for every code: a bound proven by interval evaluation
@@ -46,7 +46,9 @@ fn unitpack_snorm8x3_decode(code: u32) -> vec3<f32> {
 
 // unitpack_snorm8x3_encode_float: fast encoder, float form.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z.
-// Out: parameters in [-1, 1], unquantized, for a snorm8 render target or vertex format to round.
+// Out: parameters in [-1, 1], unquantized, for an rgba8snorm render target or snorm8x4 vertex
+//   attribute to round.
+// Storage: 32 bits a texel.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 fn unitpack_snorm8x3_encode_float(v: vec3<f32>) -> vec3<f32> {

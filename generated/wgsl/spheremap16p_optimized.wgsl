@@ -20,7 +20,7 @@
 //   n - n' 2.695e-5, PSNR 45.69 dB.
 
 // unitpack_spheremap16p_optimized_decode_float: decoder, float form.
-// In: parameters in [0, 1], as a unorm8 fetch returns them.
+// In: parameters in [0, 1], as an rg8unorm fetch returns them.
 // Out: every code decodes to a unit vector up to rounding; codes outside the disk decode as -Z.
 // Portable within a bound (as the header says): each output component is within 69·2^-24 (4.11e-6)
 //   of what this function computes here, for every code: a bound proven by interval evaluation
@@ -336,7 +336,9 @@ fn unitpack_spheremap16p_optimized_encode_codes(v: vec3<f32>) -> vec2<f32> {
 // unitpack_spheremap16p_optimized_encode_float: precise encoder, float form.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; -Z encodes
 //   as (1, 0.5).
-// Out: the chosen codes as values in [0, 1] (c/M) for a unorm8 render target or vertex format.
+// Out: the chosen codes as values in [0, 1] (c/M) for an rg8unorm render target or unorm8x2 vertex
+//   attribute.
+// Storage: 16 bits a texel.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 fn unitpack_spheremap16p_optimized_encode_float(v: vec3<f32>) -> vec2<f32> {

@@ -35,7 +35,7 @@ fn unitpack_spherical_z16_sincos_pi(x: f32) -> vec2<f32> {
 }
 
 // unitpack_spherical_z16_decode_float: decoder, float form.
-// In: parameters in [0, 1], as a unorm8 fetch returns them.
+// In: parameters in [0, 1], as an rg8unorm fetch returns them.
 // Out: decodes are unit length to within the trig approximations' error (about 2.5e-7).
 // Portable within a bound (as the header says): each output component is within 10·2^-24 (5.96e-7)
 //   of what this function computes here, for every code: a bound proven by interval evaluation
@@ -83,7 +83,9 @@ fn unitpack_spherical_z16_atan2_pi(x: f32, x1: f32) -> f32 {
 
 // unitpack_spherical_z16_encode_float: fast encoder, float form.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z.
-// Out: parameters in [0, 1], unquantized, for a unorm8 render target or vertex format to round.
+// Out: parameters in [0, 1], unquantized, for an rg8unorm render target or unorm8x2 vertex
+//   attribute to round.
+// Storage: 16 bits a texel.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 fn unitpack_spherical_z16_encode_float(v: vec3<f32>) -> vec2<f32> {

@@ -36,7 +36,7 @@ fn unitpack_spherical_z24p_sincos_pi(x: f32) -> vec2<f32> {
 }
 
 // unitpack_spherical_z24p_decode_float: decoder, float form.
-// In: parameters in [0, 1], as a unorm12 fetch returns them.
+// In: parameters in [0, 1], as an rg16unorm fetch returns them.
 // Out: decodes are unit length to within the trig approximations' error (about 2.5e-7).
 // Portable within a bound (as the header says): each output component is within 19·2^-24 (1.13e-6)
 //   of what this function computes here, for every code: a bound proven by interval evaluation
@@ -407,7 +407,10 @@ fn unitpack_spherical_z24p_encode_codes(v: vec3<f32>) -> vec2<f32> {
 
 // unitpack_spherical_z24p_encode_float: precise encoder, float form.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z.
-// Out: the chosen codes as values in [0, 1] (c/M) for a unorm12 render target or vertex format.
+// Out: the chosen codes as values in [0, 1] (c/M) for an rg16unorm render target or unorm16x2
+//   vertex attribute.
+// Storage: 32 bits a texel: no format of the code's 24 bits has unorm12, unorm12 channels, and
+//   rg16unorm's wider channels round the fields' values.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 fn unitpack_spherical_z24p_encode_float(v: vec3<f32>) -> vec2<f32> {

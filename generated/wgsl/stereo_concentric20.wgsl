@@ -32,7 +32,7 @@ fn unitpack_stereo_concentric20_sincos_quarter_pi(x: f32) -> vec2<f32> {
 }
 
 // unitpack_stereo_concentric20_decode_float: decoder, float form.
-// In: parameters in [0, 1], as a unorm10, unorm9, unorm1 fetch returns them.
+// In: parameters in [0, 1], as an rgb10a2unorm fetch returns them.
 // Out: every code lies on the disk, so every code decodes within its hemisphere, unit length up to
 //   rounding.
 // Portable within a bound (as the header says): each output component is within 28·2^-24 (1.67e-6)
@@ -92,8 +92,10 @@ fn unitpack_stereo_concentric20_atan2_pi(minor: f32, x: f32) -> f32 {
 // unitpack_stereo_concentric20_encode_float: fast encoder, float form.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; the equator
 //   (z = 0) is on the +Z side.
-// Out: parameters in [0, 1], unquantized, for a unorm10, unorm9, unorm1 render target or vertex
-//   format to round.
+// Out: parameters in [0, 1], unquantized, for an rgb10a2unorm render target or unorm10-10-10-2
+//   vertex attribute to round.
+// Storage: 32 bits a texel: no format of the code's 20 bits has unorm10, unorm9, unorm1 channels,
+//   and rgb10a2unorm's wider channels round the fields' values.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 fn unitpack_stereo_concentric20_encode_float(v: vec3<f32>) -> vec3<f32> {

@@ -19,7 +19,7 @@
 //   of n - n' 7.684e-3, PSNR 21.14 dB.
 
 // unitpack_stereo_scaled16_ieee_decode_float: decoder, float form.
-// In: parameters in [0, 1], as a unorm8 fetch returns them.
+// In: parameters in [0, 1], as an rg8unorm fetch returns them.
 // Out: every code decodes to a unit vector (up to rounding).
 // Portable within a bound (as the header says): each output component is within 10·2^-24 (5.96e-7)
 //   of what this function computes here, for every code: a bound proven by interval evaluation
@@ -47,7 +47,9 @@ fn unitpack_stereo_scaled16_ieee_decode(code: u32) -> vec3<f32> {
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; directions
 //   beyond 2·atan(scale) from +Z clamp to the square's edge; -Z, where the projection is undefined,
 //   encodes as (0, 0), the corner nearest it.
-// Out: parameters in [0, 1], unquantized, for a unorm8 render target or vertex format to round.
+// Out: parameters in [0, 1], unquantized, for an rg8unorm render target or unorm8x2 vertex
+//   attribute to round.
+// Storage: 16 bits a texel.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 fn unitpack_stereo_scaled16_ieee_encode_float(v: vec3<f32>) -> vec2<f32> {

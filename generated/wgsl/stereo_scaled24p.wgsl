@@ -19,7 +19,7 @@
 //   of n - n' 7.669e-3, PSNR 21.15 dB.
 
 // unitpack_stereo_scaled24p_decode_float: decoder, float form.
-// In: parameters in [0, 1], as a unorm12 fetch returns them.
+// In: parameters in [0, 1], as an rg16unorm fetch returns them.
 // Out: every code decodes to a unit vector (up to rounding).
 // Portable within a bound (as the header says): each output component is within 13·2^-24 (7.75e-7)
 //   of what this function computes here, for every code: a bound proven by interval evaluation
@@ -303,7 +303,10 @@ fn unitpack_stereo_scaled24p_encode_codes(v: vec3<f32>) -> vec2<f32> {
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; directions
 //   beyond 2·atan(scale) from +Z clamp to the square's edge; -Z, where the projection is undefined,
 //   encodes as (0, 0), the corner nearest it.
-// Out: the chosen codes as values in [0, 1] (c/M) for a unorm12 render target or vertex format.
+// Out: the chosen codes as values in [0, 1] (c/M) for an rg16unorm render target or unorm16x2
+//   vertex attribute.
+// Storage: 32 bits a texel: no format of the code's 24 bits has unorm12, unorm12 channels, and
+//   rg16unorm's wider channels round the fields' values.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 fn unitpack_stereo_scaled24p_encode_float(v: vec3<f32>) -> vec2<f32> {

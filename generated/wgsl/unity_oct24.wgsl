@@ -21,7 +21,7 @@
 //   n - n' 1.119e-7, PSNR 69.51 dB.
 
 // unitpack_unity_oct24_decode_float: decoder, float form.
-// In: parameters in [0, 1], as a unorm8 fetch returns them.
+// In: parameters in [0, 1], as an rgba8unorm fetch returns them.
 // Out: UnpackNormalOctQuadEncode: a unit vector (to rounding) for every code.
 // Portable within a bound (as the header says): each output component is within 23·2^-24 (1.37e-6)
 //   of what this function computes here, for every code: a bound proven by interval evaluation
@@ -84,7 +84,9 @@ fn unitpack_unity_oct24_round_codes(v: vec3<f32>) -> vec3<f32> {
 // In: any vector; Unity's: zero input encodes as +Z (bytes ff ff 77); -Z folds to the positive
 //   corner (ff ff ff); NaN coordinates become 0 (saturate(NaN) = 0 in D3D), so an all-NaN input
 //   gives bytes 00 00 00.
-// Out: parameters in [0, 1], unquantized, for a unorm8 render target or vertex format to round.
+// Out: parameters in [0, 1], unquantized, for an rgba8unorm render target or unorm8x4 vertex
+//   attribute to round.
+// Storage: 32 bits a texel.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 fn unitpack_unity_oct24_encode_float(v: vec3<f32>) -> vec3<f32> {

@@ -19,7 +19,7 @@
 //   n - n' 6.451e-5, PSNR 41.90 dB.
 
 // unitpack_xy16_decode_float: decoder, float form.
-// In: parameters in [-1, 1], as a snorm8 fetch returns them.
+// In: parameters in [-1, 1], as an rg8snorm fetch returns them.
 // Out: z = sqrt(1 - saturate(x²+y²)); codes outside the unit disk decode to (x, y, 0), longer than
 //   1.
 // Portable within a bound (as the header says): each output component is within 24·2^-24 (1.43e-6)
@@ -48,7 +48,9 @@ fn unitpack_xy16_decode(code: u32) -> vec3<f32> {
 // unitpack_xy16_encode_float: fast encoder, float form.
 // In: any vector; input is normalized onto the +Z hemisphere first (z ← max(z, +0)); zero, NaN and
 //   infinite input encode as +Z.
-// Out: parameters in [-1, 1], unquantized, for a snorm8 render target or vertex format to round.
+// Out: parameters in [-1, 1], unquantized, for an rg8snorm render target or snorm8x2 vertex
+//   attribute to round.
+// Storage: 16 bits a texel.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 fn unitpack_xy16_encode_float(v: vec3<f32>) -> vec2<f32> {

@@ -20,7 +20,7 @@
 //   n - n' 1.260e-4, PSNR 39.00 dB.
 
 // unitpack_xy_signz16_decode_float: decoder, float form.
-// In: parameters in [-1, 1], as a snorm8, snorm7, unorm1 fetch returns them.
+// In: parameters in [-1, 1], as an rgba8snorm fetch returns them.
 // Out: z = ±sqrt(1 - saturate(x²+y²)); codes outside the unit disk decode to (x, y, ±0), longer
 //   than 1.
 // Portable within a bound (as the header says): each output component is within 93·2^-24 (5.54e-6)
@@ -60,8 +60,10 @@ fn unitpack_xy_signz16_decode(code: u32) -> vec3<f32> {
 // unitpack_xy_signz16_encode_float: fast encoder, float form.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; the equator
 //   (z = 0) and -0 are on the +Z side.
-// Out: parameters in [-1, 1], unquantized, for a snorm8, snorm7, unorm1 render target or vertex
-//   format to round.
+// Out: parameters in [-1, 1], unquantized, for an rgba8snorm render target or snorm8x4 vertex
+//   attribute to round.
+// Storage: 32 bits a texel: no format of the code's 16 bits has snorm8, snorm7, unorm1 channels,
+//   and rgba8snorm's wider channels round the fields' values.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 fn unitpack_xy_signz16_encode_float(v: vec3<f32>) -> vec3<f32> {

@@ -20,7 +20,7 @@
 //   n - n' 1.891e-6, PSNR 57.23 dB.
 
 // unitpack_xy_signz24_decode_float: decoder, float form.
-// In: parameters in [-1, 1], as a snorm12, snorm11, unorm1 fetch returns them.
+// In: parameters in [-1, 1], as an rgba16snorm fetch returns them.
 // Out: z = ±sqrt(1 - saturate(x²+y²)); codes outside the unit disk decode to (x, y, ±0), longer
 //   than 1.
 // Portable within a bound (as the header says): each output component is within 586·2^-24 (3.49e-5)
@@ -60,8 +60,10 @@ fn unitpack_xy_signz24_decode(code: u32) -> vec3<f32> {
 // unitpack_xy_signz24_encode_float: fast encoder, float form.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; the equator
 //   (z = 0) and -0 are on the +Z side.
-// Out: parameters in [-1, 1], unquantized, for a snorm12, snorm11, unorm1 render target or vertex
-//   format to round.
+// Out: parameters in [-1, 1], unquantized, for an rgba16snorm render target or snorm16x4 vertex
+//   attribute to round.
+// Storage: 64 bits a texel: no format of the code's 24 bits has snorm12, snorm11, unorm1 channels,
+//   and rgba16snorm's wider channels round the fields' values.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 fn unitpack_xy_signz24_encode_float(v: vec3<f32>) -> vec3<f32> {

@@ -20,7 +20,7 @@
 //   n - n' 8.025e-6, PSNR 50.96 dB.
 
 // unitpack_xy_stereo16_decode_float: decoder, float form.
-// In: parameters in [-1, 1], as a snorm8 fetch returns them.
+// In: parameters in [-1, 1], as an rg8snorm fetch returns them.
 // Out: every code decodes to a unit vector (up to rounding); codes outside the unit disk decode
 //   below the horizon.
 // Portable within a bound (as the header says): each output component is within 7·2^-24 (4.17e-7)
@@ -49,7 +49,9 @@ fn unitpack_xy_stereo16_decode(code: u32) -> vec3<f32> {
 // unitpack_xy_stereo16_encode_float: fast encoder, float form.
 // In: any vector; input is normalized onto the +Z hemisphere first (z ← max(z, +0)); zero, NaN,
 //   infinite and -Z input encode as +Z.
-// Out: parameters in [-1, 1], unquantized, for a snorm8 render target or vertex format to round.
+// Out: parameters in [-1, 1], unquantized, for an rg8snorm render target or snorm8x2 vertex
+//   attribute to round.
+// Storage: 16 bits a texel.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 fn unitpack_xy_stereo16_encode_float(v: vec3<f32>) -> vec2<f32> {

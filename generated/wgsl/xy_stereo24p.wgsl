@@ -20,7 +20,7 @@
 //   n - n' 3.099e-8, PSNR 75.09 dB.
 
 // unitpack_xy_stereo24p_decode_float: decoder, float form.
-// In: parameters in [-1, 1], as a snorm12 fetch returns them.
+// In: parameters in [-1, 1], as an rg16snorm fetch returns them.
 // Out: every code decodes to a unit vector (up to rounding); codes outside the unit disk decode
 //   below the horizon.
 // Portable within a bound (as the header says): each output component is within 9·2^-24 (5.36e-7)
@@ -305,7 +305,10 @@ fn unitpack_xy_stereo24p_encode_codes(v: vec3<f32>) -> vec2<f32> {
 // unitpack_xy_stereo24p_encode_float: precise encoder, float form.
 // In: any vector; input is normalized onto the +Z hemisphere first (z ← max(z, +0)); zero, NaN,
 //   infinite and -Z input encode as +Z.
-// Out: the chosen codes as values in [-1, 1] (c/M) for a snorm12 render target or vertex format.
+// Out: the chosen codes as values in [-1, 1] (c/M) for an rg16snorm render target or snorm16x2
+//   vertex attribute.
+// Storage: 32 bits a texel: no format of the code's 24 bits has snorm12, snorm12 channels, and
+//   rg16snorm's wider channels round the fields' values.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 fn unitpack_xy_stereo24p_encode_float(v: vec3<f32>) -> vec2<f32> {

@@ -10,8 +10,8 @@
 //! `UNITPACK_REFRESH=1` rewrites it.
 
 use super::filtering::{self, Filtering};
-use super::formats::{self, Format};
 use crate::codecs::Spec;
+use crate::codecs::core::storage::{self, Format, Holds};
 use crate::measure::figures::ErrorStats;
 use serde::{Deserialize, Serialize};
 
@@ -63,20 +63,30 @@ pub struct Entry {
 }
 
 impl Entry {
-    /// Whether the float form filters with at most `deg` degrees at the deciding
-    /// separation's 99th percentile (lerp and resolve alike).
+    /// Whether the float form is stored in a format a texture unit filters and filters
+    /// with at most `deg` degrees at the deciding separation's 99th percentile (lerp and
+    /// resolve alike).
     pub fn filterable_within(&self, deg: f64) -> bool {
         self.not_filterable.is_none()
+            && self.filterable_storage().is_some()
             && self
                 .filtering
                 .as_ref()
                 .is_some_and(|f| f.deciding_p99() <= deg)
     }
 
+    /// The smallest filterable format the float form is stored in.
+    pub fn filterable_storage(&self) -> Option<&Format> {
+        self.formats
+            .iter()
+            .filter(|f| f.holds == Holds::FloatForm && f.filterable)
+            .min_by_key(|f| f.bits)
+    }
+
     /// The figure `--by filter` orders by (infinite when not filterable).
     pub fn filter_figure(&self) -> f64 {
         match (&self.not_filterable, &self.filtering) {
-            (None, Some(f)) => f.deciding_p99(),
+            (None, Some(f)) if self.filterable_storage().is_some() => f.deciding_p99(),
             _ => f64::INFINITY,
         }
     }
@@ -154,8 +164,12 @@ pub fn compute(specs: &[Spec], stats: &[Option<ErrorStats>], alu: &[[u32; 4]]) -
                 decode: bound("decode"),
                 decode_float: bound("decode_float"),
             },
-            formats::formats(spec, &e),
-            filtering::measure(&e, domain),
+            {
+                let formats = storage::formats(spec, &e);
+                let filtering = storage::float_form_storage(&formats)
+                    .and_then(|f| filtering::measure(&e, f, domain));
+                (formats, filtering)
+            },
         )
     });
     let samples = stats
@@ -169,7 +183,7 @@ pub fn compute(specs: &[Spec], stats: &[Option<ErrorStats>], alu: &[[u32; 4]]) -
         .zip(alu)
         .zip(rows)
         .map(
-            |(((spec, st), a), (portable, bounds, formats, filtering))| {
+            |(((spec, st), a), (portable, bounds, (formats, filtering)))| {
                 let st = st.expect("a codec spec has error statistics");
                 Entry {
                     spec: spec.id(),

@@ -6,6 +6,7 @@
 
 use super::catalogue::{Catalogue, Entry};
 use super::filtering::DECIDING_SEPARATION;
+use crate::codecs::core::storage::Holds;
 
 /// What the ranking orders by, best first.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
@@ -53,7 +54,8 @@ impl Order {
 /// A user's constraints, as `choose` takes them.
 #[derive(Clone, Debug, Default, PartialEq, clap::Args)]
 pub struct Query {
-    /// Total bits of the packed code.
+    /// Total bits of the packed code; with `--filterable`, bits a texel of the float
+    /// form's filterable format costs (which may be wider than the code).
     #[arg(long, value_name = "N")]
     pub bits: Option<u32>,
     /// A storage format the code or float form is written to, in any API's spelling:
@@ -63,8 +65,9 @@ pub struct Query {
     /// The codec's domain.
     #[arg(long, value_parser = ["sphere", "hemisphere"])]
     pub domain: Option<String>,
-    /// Only specs whose float form survives linear filtering and four-sample resolves:
-    /// the 99th percentile of the filtering error at 5° apart at most DEG degrees.
+    /// Only specs whose float form is stored in a format texture units filter and
+    /// survives linear filtering and four-sample resolves there: the 99th percentile of
+    /// the filtering error at 5° apart at most DEG degrees.
     #[arg(
         long,
         value_name = "DEG",
@@ -138,11 +141,25 @@ impl Query {
     fn constraints(&self) -> Vec<(String, String, Test)> {
         let mut c: Vec<(String, String, Test)> = Vec::new();
         if let Some(b) = self.bits {
-            c.push((
-                format!("--bits {b}"),
-                format!("{b} bits"),
-                Box::new(move |e: &Entry| e.bits == b),
-            ));
+            // A filtered G-buffer or texture costs its float form's texel, which may be
+            // wider than the code: with `--filterable`, N counts the texel's bits.
+            if self.filterable.is_some() {
+                c.push((
+                    format!("--bits {b}"),
+                    format!("a filterable texel of {b} bits"),
+                    Box::new(move |e: &Entry| {
+                        e.formats
+                            .iter()
+                            .any(|f| f.holds == Holds::FloatForm && f.filterable && f.bits == b)
+                    }),
+                ));
+            } else {
+                c.push((
+                    format!("--bits {b}"),
+                    format!("{b} bits"),
+                    Box::new(move |e: &Entry| e.bits == b),
+                ));
+            }
         }
         if let Some(f) = self.format.clone() {
             let g = f.clone();
@@ -253,9 +270,19 @@ pub fn choose<'a>(
             } else {
                 format!("#{}", i + 1)
             };
+            let stored = match (query.filterable, e.filterable_storage()) {
+                (Some(_), Some(f)) if f.bits > e.bits => format!(
+                    "; filtered in {}, {} bits a texel (no format of the code's {} bits holds its float form)",
+                    f.name(),
+                    f.bits,
+                    e.bits
+                ),
+                (Some(_), Some(f)) => format!("; filtered in {}, {} bits a texel", f.name(), f.bits),
+                _ => String::new(),
+            };
             Choice {
                 entry: e,
-                why: format!("{place} by {}{meets}", order.describe(e)),
+                why: format!("{place} by {}{meets}{stored}", order.describe(e)),
             }
         })
         .collect())

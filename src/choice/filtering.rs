@@ -1,11 +1,15 @@
 //! What linear filtering and multisample resolves do to a spec's float form: the figure
 //! a G-buffer or normal-map user needs and nobody publishes.
 //!
-//! A texture unit filters the stored parameters, not the directions they decode to. So
+//! A texture unit filters the stored parameters, not the directions they decode to. The
+//! parameters stored are what the float form's format ([`crate::codecs::core::storage`])
+//! keeps of `encode_float`'s output: `s(v) = store(encode_float(v))`, rounded to its
+//! channels as a render target rounds (an unquantized float form to its own fields, a
+//! float form wider than any format of its size to the wider format's channels). So
 //! for two neighbours `a`, `b` and a weight `w`, the filtered texel decodes to
-//! `decode_float(lerp(encode_float(a), encode_float(b), w))`, while what the shader
-//! wanted is the renormalized lerp of the two decoded directions,
-//! `normalize(lerp(decode_float(pa), decode_float(pb), w))`. The angle between the two
+//! `decode_float(lerp(s(a), s(b), w))`, while what the shader wanted is the renormalized
+//! lerp of the two decoded directions, `normalize(lerp(decode_float(s(a)),
+//! decode_float(s(b)), w))`. The angle between the two
 //! is the filtering error. A resolve (an MSAA resolve or a 2×2 box mip) is the same with
 //! four samples averaged with equal weights.
 //!
@@ -18,6 +22,7 @@
 //! codec arithmetic is the model's, in f32, on the CPU lanes.
 
 use crate::codecs::core::info::Domain;
+use crate::codecs::core::storage::Format;
 use crate::codecs::functions::function::{Emitted, Function, Inputs, Role};
 use crate::codecs::toolkit::quant::Quant;
 use crate::measure::quality::angle_deg;
@@ -165,9 +170,11 @@ pub type Decoder<'a> = &'a (dyn Fn(&[u32], &mut [u32]) + Sync);
 
 /// The filtering error of each group of `k` vectors of `vs` (`weights` one per vector,
 /// summing to 1 in each group): the angle in degrees between the decoded filtered
-/// parameters and the renormalized weighted sum of the decoded vectors.
+/// parameters and the renormalized weighted sum of the decoded vectors, both from what
+/// `storage` stores of the encoded parameters.
 pub fn errors(
     enc: &Function,
+    storage: &Format,
     dec: Decoder,
     k: usize,
     vs: &[[f32; 3]],
@@ -178,6 +185,14 @@ pub fn errors(
     let input: Vec<u32> = vs.iter().flat_map(|v| v.map(f32::to_bits)).collect();
     let mut params = vec![0u32; vs.len() * words];
     enc.eval_many(&input, &mut params);
+    // What the render target stores of each item.
+    for item in params.chunks_exact_mut(words) {
+        let mut p: Vec<f32> = item.iter().map(|w| f32::from_bits(*w)).collect();
+        storage.store(&mut p);
+        for (w, x) in item.iter_mut().zip(p) {
+            *w = x.to_bits();
+        }
+    }
     let mut decoded = vec![0u32; vs.len() * 3];
     dec(&params, &mut decoded);
     // The filtered parameters of each group, in f64, rounded once.
@@ -229,7 +244,12 @@ fn stats(separation: f64, errors: &mut [f64]) -> FilterStats {
 
 /// The filtering figures of a spec whose float form is `enc` (vector → parameters) and
 /// `dec` (parameters → vector) on `domain`.
-pub fn measure_functions(enc: &Function, dec: Decoder, domain: Domain) -> Filtering {
+pub fn measure_functions(
+    enc: &Function,
+    storage: &Format,
+    dec: Decoder,
+    domain: Domain,
+) -> Filtering {
     let hemisphere = domain == Domain::Hemisphere;
     let run = |k: usize, kind: u64| -> Vec<FilterStats> {
         SEPARATIONS
@@ -238,7 +258,7 @@ pub fn measure_functions(enc: &Function, dec: Decoder, domain: Domain) -> Filter
             .map(|(i, &deg)| {
                 let offset = kind * 16 + i as u64;
                 let vs = groups(offset, k, deg.to_radians(), hemisphere);
-                let mut e = errors(enc, dec, k, &vs, &weights(offset, k));
+                let mut e = errors(enc, storage, dec, k, &vs, &weights(offset, k));
                 stats(deg, &mut e)
             })
             .collect()
@@ -249,21 +269,27 @@ pub fn measure_functions(enc: &Function, dec: Decoder, domain: Domain) -> Filter
     }
 }
 
-/// The filtering figures of a spec ([`Emitted`] is its traced functions), or `None` when
-/// it has no CPU float form that takes a vector alone.
+/// The filtering figures of a spec ([`Emitted`] is its traced functions) whose float
+/// form is stored in `storage`, or `None` when it has no CPU float form that takes a
+/// vector alone.
 ///
 /// A float form whose decoder reads a lookup table's texel beside the parameters
 /// (`spherical_lut`: the texel of the sin/cos table at the code) is read as a shader
 /// reads a filtered texel of it: the filtered parameters rounded to the nearest code of
 /// each unorm field, and that code decoded through the table.
-pub fn measure(e: &Emitted, domain: Domain) -> Option<Filtering> {
+pub fn measure(e: &Emitted, storage: &Format, domain: Domain) -> Option<Filtering> {
     let enc = e.cpu_function(Role::EncodeFloat)?;
     if enc.in_words != 3 {
         return None;
     }
     let dec = e.cpu_function(Role::DecodeFloat)?;
     if dec.in_words == enc.out_words && dec.out_words == 3 {
-        return Some(measure_functions(enc, &|p, o| dec.eval_many(p, o), domain));
+        return Some(measure_functions(
+            enc,
+            storage,
+            &|p, o| dec.eval_many(p, o),
+            domain,
+        ));
     }
     let code_dec = e.cpu_function(Role::Decode)?;
     let Inputs::Codes(fields) = &code_dec.inputs else {
@@ -293,5 +319,5 @@ pub fn measure(e: &Emitted, domain: Domain) -> Option<Filtering> {
             .collect();
         code_dec.eval_many(&codes, out)
     };
-    Some(measure_functions(enc, &through_table, domain))
+    Some(measure_functions(enc, storage, &through_table, domain))
 }

@@ -3,7 +3,7 @@
 //! block to [`table`] of the compiled-in catalogue, and `tests/cli/choose.rs` runs each
 //! case's command through the binary.
 
-use super::catalogue::Catalogue;
+use super::catalogue::{Catalogue, Entry};
 use super::choose::{Order, Query, choose};
 
 /// One common case.
@@ -72,7 +72,7 @@ pub fn cases() -> Vec<Case> {
         case("G-buffer normals in 24 bits", gbuffer(24), Order::Max),
         case("G-buffer normals in 32 bits", gbuffer(32), Order::Max),
         case(
-            "a G-buffer that is filtered or MSAA-resolved, 32 bits",
+            "a G-buffer that is filtered or MSAA-resolved, 32 bits a texel",
             Query {
                 filterable: Some(1.0),
                 ..gbuffer(32)
@@ -111,11 +111,25 @@ pub fn cases() -> Vec<Case> {
     ]
 }
 
+/// Where the case stores the first choice: the filterable texel where it filters, the
+/// format it names, else the code's format.
+fn stored_as(case: &Case, e: &Entry) -> String {
+    let q = &case.query;
+    let f = if q.filterable.is_some() {
+        e.filterable_storage()
+    } else if let Some(name) = &q.format {
+        e.formats.iter().find(|f| f.matches(name))
+    } else {
+        e.formats.first()
+    };
+    f.map_or_else(String::new, |f| format!("{}, {} bits", f.name(), f.bits))
+}
+
 /// The README's table: each case, its command and what `choose` ranks first.
 pub fn table(c: &Catalogue) -> String {
     let mut s = String::from(
-        "| for | `unitpack choose …` | first choice | mean | sample max | encode / decode ALU |\n\
-         |---|---|---|---|---|---|\n",
+        "| for | `unitpack choose …` | first choice | stored as | mean | sample max | encode / decode ALU |\n\
+         |---|---|---|---|---|---|---|\n",
     );
     for case in cases() {
         let first = choose(c, &case.query, case.order)
@@ -125,10 +139,11 @@ pub fn table(c: &Catalogue) -> String {
             Some(ch) => {
                 let e = ch.entry;
                 s.push_str(&format!(
-                    "| {} | `{}` | `{}` | {:.4}° | {:.4}° | {} / {} |\n",
+                    "| {} | `{}` | `{}` | {} | {:.4}° | {:.4}° | {} / {} |\n",
                     case.what,
                     case.args().join(" "),
                     e.spec,
+                    stored_as(&case, e),
                     e.mean,
                     e.max,
                     e.alu.encode,
@@ -136,7 +151,7 @@ pub fn table(c: &Catalogue) -> String {
                 ));
             }
             None => s.push_str(&format!(
-                "| {} | `{}` | none | | | |\n",
+                "| {} | `{}` | none | | | | |\n",
                 case.what,
                 case.args().join(" ")
             )),

@@ -23,11 +23,15 @@ pub fn header() -> String {
 
 /// One row under [`header`].
 pub fn row(e: &Entry) -> String {
-    let formats: Vec<&str> = e.formats.iter().map(|f| f.name()).collect();
-    let filter = if e.not_filterable.is_some() {
-        "no".to_string()
-    } else {
+    let formats: Vec<String> = e
+        .formats
+        .iter()
+        .map(|f| format!("{}/{}{}", f.name(), f.bits, if f.exact { "" } else { "~" }))
+        .collect();
+    let filter = if e.filter_figure().is_finite() {
         fig(Some(e.filter_figure()), 4)
+    } else {
+        "no".to_string()
     };
     format!(
         "{:<28} {:>4} {:<10} {:>9} {:>9} {:>5} {:>5} {:<8} {:>7} {:>9}  {}",
@@ -51,8 +55,10 @@ pub fn legend(c: &Catalogue) -> String {
         "mean°, max°: round-trip error over {} seeded vectors (max: the sample's largest, \
          not a bound). enc, dec: ALU instructions of the packed encoder and decoder. \
          bound: proven decode bound in units of 2^-24. filter°: 99th percentile of the \
-         filtering error at {DECIDING_SEPARATION}° apart (no: not filterable). formats: \
-         WebGPU names; `unitpack list --json` has every API's spelling.\n",
+         filtering error at {DECIDING_SEPARATION}° apart, as the float form's format stores \
+         it (no: not filterable). formats: WebGPU names / bits a texel or vertex \
+         (~: wider channels that round the fields, or a block format); `unitpack list \
+         --json` has every API's spelling.\n",
         c.samples
     )
 }

@@ -6,7 +6,7 @@
 
 use super::lang::printer::Printed;
 use crate::codecs::Spec;
-use crate::codecs::core::texel;
+use crate::codecs::core::{storage, texel};
 use crate::codecs::functions::function::{Emitted, Inputs, Role};
 use crate::codecs::toolkit::quant::{Quant, field_offsets};
 use crate::measure::figures::{Figures, UNIT, VECTOR_SEED};
@@ -165,15 +165,41 @@ fn param_range(q: &[Quant]) -> &'static str {
     }
 }
 
-/// "a snorm8", or "a snorm11, snorm11, snorm10" where the fields differ: what a
-/// texture fetch or render target of the fields is called.
-fn storage_name(q: &[Quant]) -> String {
-    if q.iter().all(|f| *f == q[0]) {
-        format!("a {}", q[0].name())
+/// Where the float form is stored, as the function docs name it: what a render target
+/// or vertex attribute of it is called, what a fetch of it is called, and a sentence on
+/// what a texel costs. The format is the smallest real one that holds the fields
+/// (`crate::codecs::core::storage`); where it is wider than the code, the sentence says so.
+fn storage_text(q: &[Quant], code_bits: u32) -> [String; 3] {
+    let names: Vec<String> = q.iter().map(|f| f.name()).collect();
+    let fields = format!("a {}", names.join(", "));
+    let Some((r, exact)) = storage::float_form_format(q) else {
+        return [
+            format!("{fields} render target or vertex format"),
+            format!("{fields} fetch"),
+            "No real format holds these fields.".to_string(),
+        ];
+    };
+    let article = |name: &str| if name.starts_with('r') { "an" } else { "a" };
+    let target = match (r.texture, r.vertex) {
+        (Some(t), Some(v)) => format!("{} {t} render target or {v} vertex attribute", article(t)),
+        (Some(t), None) => format!("{} {t} render target", article(t)),
+        (None, v) => format!("a {} vertex attribute", v.unwrap_or(r.vulkan)),
+    };
+    let fetch = match r.texture {
+        Some(t) => format!("{} {t} fetch", article(t)),
+        None => format!("a {} fetch", r.vertex.unwrap_or(r.vulkan)),
+    };
+    let cost = if exact {
+        format!("Storage: {} bits a texel.", r.bits)
     } else {
-        let names: Vec<String> = q.iter().map(|f| f.name()).collect();
-        format!("a {}", names.join(", "))
-    }
+        format!(
+            "Storage: {} bits a texel: no format of the code's {code_bits} bits has {} channels, and {}'s wider channels round the fields' values.",
+            r.bits,
+            names.join(", "),
+            r.texture.or(r.vertex).unwrap_or(r.vulkan)
+        )
+    };
+    [target, fetch, cost]
 }
 
 fn helper_doc(spec: &Spec, local: &str) -> Vec<String> {
@@ -262,7 +288,7 @@ pub fn function_doc(
     };
     let layout = layout_text(q);
     let range = param_range(q);
-    let storage = storage_name(q);
+    let [target, fetch, cost] = storage_text(q, spec.bits());
     let texel = TexelText::of(spec, local);
     let own = spec.family().function_doc(spec, local);
     let mut d = match (role, texel) {
@@ -339,21 +365,18 @@ pub fn function_doc(
         ],
         (Role::DecodeFloat, None) => vec![
             format!("{}: decoder, float form.", p.name),
-            format!("In: parameters in {range}, as {storage} fetch returns them."),
+            format!("In: parameters in {range}, as {fetch} returns them."),
             format!("Out: {}.", c.decode_note),
         ],
         (Role::EncodeFloat, None) => vec![
             format!("{}: {enc}, float form.", p.name),
             format!("In: any vector; {}.", c.edge_policy),
             if spec.precise() {
-                format!(
-                    "Out: the chosen codes as values in {range} (c/M) for {storage} render target or vertex format."
-                )
+                format!("Out: the chosen codes as values in {range} (c/M) for {target}.")
             } else {
-                format!(
-                    "Out: parameters in {range}, unquantized, for {storage} render target or vertex format to round."
-                )
+                format!("Out: parameters in {range}, unquantized, for {target} to round.")
             },
+            cost,
         ],
         (Role::Pack | Role::Unpack | Role::Combine | Role::LutTexel, _) => unreachable!(),
     };

@@ -119,7 +119,7 @@ fn filter_cell(e: &Entry) -> String {
 }
 
 fn formats_text(e: &Entry) -> String {
-    let names: Vec<&str> = e.formats.iter().map(|f| f.name()).collect();
+    let names: Vec<String> = e.formats.iter().map(|f| f.label()).collect();
     names.join(", ")
 }
 
@@ -181,9 +181,25 @@ fn figure_rows(e: &Entry, samples: usize) -> Vec<String> {
             0 => String::new(),
             n => format!(" ({n} channel{} unused)", if n == 1 { "" } else { "s" }),
         };
+        let how = match (f.exact, f.filterable) {
+            (true, true) => "stores the values exactly; filterable",
+            (true, false) => "stores the values exactly; not filterable",
+            (false, true) => {
+                "wider channels that round the fields' values (or a block format); filterable"
+            }
+            (false, false) => "wider channels that round the fields' values; not filterable",
+        };
+        let note = f
+            .note
+            .as_deref()
+            .map_or(String::new(), |n| format!("; {n}"));
         rows.push(row(
             &format!("format ({})", f.holds.name()),
-            text(&format!("{}{unused}", f.spellings().join(" · "))),
+            text(&format!(
+                "{}{unused}: {} bits a texel or vertex, {how}{note}",
+                f.spellings().join(" · "),
+                f.bits
+            )),
         ));
     }
     rows

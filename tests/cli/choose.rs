@@ -75,7 +75,10 @@ fn each_constraint_filters_as_stated() {
         ids(&all.iter().filter(|e| test(e)).cloned().collect::<Vec<_>>())
     };
     let p99_at_5 = |e: &Value| -> f64 {
-        if !e["not_filterable"].is_null() || e["filtering"].is_null() {
+        if !e["not_filterable"].is_null()
+            || e["filtering"].is_null()
+            || filterable_texels(e).is_empty()
+        {
             return f64::INFINITY;
         }
         ["lerp", "resolve"]
@@ -143,6 +146,71 @@ fn each_constraint_filters_as_stated() {
     assert_eq!(ids(&both), want);
 }
 
+/// The bits a texel of each filterable format of the spec's float form costs.
+fn filterable_texels(e: &Value) -> Vec<u64> {
+    e["formats"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|x| x["holds"] == "float_form" && x["filterable"] == true)
+        .map(|x| x["bits"].as_u64().unwrap())
+        .collect()
+}
+
+/// A filtered G-buffer costs its float form's texel: with `--filterable`, `--bits N`
+/// keeps the specs with a filterable format of N bits a texel, never one whose only
+/// filterable storage is wider (eqdist16's float form, unorm8, unorm7 and unorm1, exists
+/// only as rgba8unorm at 32 bits, and r16uint is not filtered).
+#[test]
+fn with_filterable_the_bits_are_the_texels() {
+    let all = listed();
+    for bits in [16u64, 32, 64] {
+        let b = bits.to_string();
+        // Any filtering error: which specs remain is decided by their texels alone.
+        let got = chosen(&["--bits", &b, "--filterable=180", "--domain", "sphere"]);
+        assert!(
+            !got.is_empty(),
+            "--bits {bits} --filterable finds something"
+        );
+        for e in &got {
+            assert!(
+                filterable_texels(e).contains(&bits),
+                "--bits {bits}: {} has no filterable {bits}-bit texel: {}",
+                e["spec"],
+                e["formats"]
+            );
+        }
+        let why = got[0]["why"].as_str().unwrap();
+        assert!(why.contains(&format!("{bits} bits a texel")), "{why}");
+        if bits == 64 {
+            continue;
+        }
+        let any_wider = all.iter().any(|e| {
+            e["domain"] == "sphere"
+                && e["bits"] == bits
+                && !filterable_texels(e).is_empty()
+                && filterable_texels(e).iter().all(|&t| t > bits)
+        });
+        assert!(
+            any_wider,
+            "a {bits}-bit code whose float form needs more exists"
+        );
+    }
+    let sixteen = ids(&chosen(&[
+        "--bits",
+        "16",
+        "--filterable=180",
+        "--domain",
+        "sphere",
+    ]));
+    for wide in ["eqdist16p", "eqdist_ellipse16", "eqarea_ellipse16"] {
+        assert!(!sixteen.contains(wide), "{wide} in {sixteen:?}");
+    }
+    assert!(sixteen.contains("oct16"), "{sixteen:?}");
+    let listed_eqdist = all.iter().find(|e| e["spec"] == "eqdist16").unwrap();
+    assert_eq!(filterable_texels(listed_eqdist), [32], "{listed_eqdist}");
+}
+
 #[test]
 fn each_order_ranks_by_its_figure() {
     let key = |e: &Value, by: &str| -> f64 {
@@ -168,7 +236,10 @@ fn each_order_ranks_by_its_figure() {
     }
     // --by filter puts every filterable spec before every unfilterable one.
     let r = chosen(&["--bits", "24", "--by", "filter"]);
-    let filterable: Vec<bool> = r.iter().map(|e| e["not_filterable"].is_null()).collect();
+    let filterable: Vec<bool> = r
+        .iter()
+        .map(|e| e["not_filterable"].is_null() && !filterable_texels(e).is_empty())
+        .collect();
     assert!(filterable[0]);
     assert!(
         filterable.windows(2).all(|w| w[0] || !w[1]),

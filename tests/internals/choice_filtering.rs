@@ -4,10 +4,20 @@
 
 use unitpack::Spec;
 use unitpack::choice::filtering::{self, Filtering, errors};
+use unitpack::codecs::core::storage::{self, Format};
 use unitpack::codecs::functions::function::{Emitted, Function, Role};
 
 fn emitted(spec: &str) -> std::sync::Arc<Emitted> {
     spec.parse::<Spec>().unwrap().emitted()
+}
+
+/// The format the spec's float form is stored in.
+fn stored_in(spec: &str) -> Format {
+    let s: Spec = spec.parse().unwrap();
+    let formats = storage::formats(&s, &s.emitted());
+    storage::float_form_storage(&formats)
+        .expect("a float-form format")
+        .clone()
 }
 
 fn float_form(e: &Emitted) -> (&Function, &Function) {
@@ -27,7 +37,8 @@ fn pair(spec: &str, a: [f64; 3], b: [f64; 3], w: f64) -> f64 {
     let e = emitted(spec);
     let (enc, dec) = float_form(&e);
     let decode = |p: &[u32], o: &mut [u32]| dec.eval_many(p, o);
-    errors(enc, &decode, 2, &[unit(a), unit(b)], &[1.0 - w, w])[0]
+    let format = stored_in(spec);
+    errors(enc, &format, &decode, 2, &[unit(a), unit(b)], &[1.0 - w, w])[0]
 }
 
 #[test]
@@ -64,7 +75,7 @@ fn the_octahedral_fold_makes_pairs_across_it_err_by_tens_of_degrees() {
 
 fn measured(spec: &str) -> Filtering {
     let s: Spec = spec.parse().unwrap();
-    filtering::measure(&s.emitted(), s.info().domain.unwrap()).unwrap()
+    filtering::measure(&s.emitted(), &stored_in(spec), s.info().domain.unwrap()).unwrap()
 }
 
 #[test]

@@ -14,6 +14,7 @@ mod codecs_half;
 mod codecs_inputs;
 mod codecs_lattice;
 mod codecs_sfib;
+mod codecs_storage;
 mod codecs_trace;
 mod codecs_trig;
 mod emit_folding;

@@ -60,6 +60,7 @@ use crate::codecs::functions::words::{Declared, declared, trace_declared};
 use crate::codecs::angular::latlong::grid_direction;
 use crate::codecs::toolkit::quant::Quant;
 use crate::codecs::core::spec::Spec;
+use crate::codecs::core::storage;
 use crate::codecs::angular::spherical::fixed_angles;
 use crate::model::enclosure::Encl;
 use crate::model::{Bool, Float, Uint, V2, V3};
@@ -130,7 +131,16 @@ impl Family for LatlongDFamily {
             ],
             "encode_float" => vec![
                 "In: as encode.".to_string(),
-                format!("Out: encode's code as two unorm{h} fields (low bits first) read as c/{m}, for a render target of two unorm{h} channels, which stores exactly that code.", h = spec.bits() / 2, m = (1u64 << (spec.bits() / 2)) - 1),
+                {
+                    let h = spec.bits() / 2;
+                    let m = (1u64 << h) - 1;
+                    let stored = match storage::float_form_format(&[Quant::Unorm(h); 2]) {
+                        Some((f, true)) => format!("for an {} render target ({} bits a texel), which stores exactly that code", f.texture.unwrap_or(f.vulkan), f.bits),
+                        Some((f, false)) => format!("for an {} render target ({} bits a texel: no {}-bit format has two unorm{h} channels, and its wider channels round the values; decode the packed code where the exact code matters)", f.texture.unwrap_or(f.vulkan), f.bits, spec.bits()),
+                        None => "which no real format stores exactly".to_string(),
+                    };
+                    format!("Out: encode's code as two unorm{h} fields (low bits first) read as c/{m}, {stored}.")
+                },
             ],
             "decode_ring" => vec![
                 "In: a packed code (bits above the size are ignored).".to_string(),

@@ -8,6 +8,8 @@
 //!   shares and the four functions of a codec spec;
 //! - [`codec_family`]: the family of one codec type, which most families are;
 //! - [`texel`]: normal-map texel layouts, a projection's functions in an RGBA8 texel;
+//! - [`storage`]: the real formats a spec's code and float form are stored in, and what
+//!   each costs and stores;
 //! - [`ieee`]: the lean tier (`guarantee=ieee`), a codec's encoders without the exact
 //!   decisions that make them portable.
 
@@ -18,4 +20,5 @@ pub mod ieee;
 pub mod info;
 pub mod pipeline;
 pub mod spec;
+pub mod storage;
 pub mod texel;
