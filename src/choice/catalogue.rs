@@ -60,6 +60,53 @@ pub struct Entry {
     pub filtering: Option<Filtering>,
     /// Why the float form cannot be filtered whatever its figures, when that is so.
     pub not_filterable: Option<String>,
+    /// Where on the sphere the float form's parameters jump (the family's fact), if it
+    /// has a float form.
+    pub seam: Option<String>,
+    /// The lookup tables its shader functions read.
+    pub tables: Vec<TableSize>,
+    /// The engine whose stored bits the spec reproduces, if it is an engine format.
+    pub engine: Option<String>,
+}
+
+/// A lookup table a spec reads, by its file name and size.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct TableSize {
+    pub name: String,
+    pub bytes: usize,
+}
+
+/// ALU instructions of a tangent-frame spec's packed encoder and decoder.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct FrameAlu {
+    pub encode: u32,
+    pub decode: u32,
+}
+
+/// One tangent-frame spec's figures ([`crate::measure::figures::FrameStats`] over the
+/// seeded orthonormal frames).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct FrameEntry {
+    pub spec: String,
+    pub family: String,
+    /// Total bits of the packed code.
+    pub bits: u32,
+    /// Angle errors in degrees, `[mean, sample max]`.
+    pub normal: [f64; 2],
+    pub tangent: [f64; 2],
+    pub bitangent: [f64; 2],
+    /// Frames whose decoded sign differs from the input's.
+    pub flips: usize,
+    pub alu: FrameAlu,
+    /// The engine that reads these bits, if one does.
+    pub engine: Option<String>,
+}
+
+impl FrameEntry {
+    /// The largest sample max of the normal, the tangent and the bitangent.
+    pub fn max(&self) -> f64 {
+        self.normal[1].max(self.tangent[1]).max(self.bitangent[1])
+    }
 }
 
 impl Entry {
@@ -103,6 +150,9 @@ pub struct Catalogue {
     pub filter_seed: String,
     pub filter_pairs: usize,
     pub specs: Vec<Entry>,
+    /// Frames behind each tangent-frame spec's figures.
+    pub frame_samples: usize,
+    pub frames: Vec<FrameEntry>,
 }
 
 impl Catalogue {
@@ -142,11 +192,19 @@ impl Catalogue {
 }
 
 /// Computes the catalogue for `specs` (the codecs, in catalogue order) from their error
-/// statistics and ALU counts (`[encode, encode_float, decode, decode_float]`), proving
-/// the decoder bounds and measuring the filtering here.
-pub fn compute(specs: &[Spec], stats: &[Option<ErrorStats>], alu: &[[u32; 4]]) -> Catalogue {
+/// statistics and ALU counts (`[encode, encode_float, decode, decode_float]`), and for
+/// `frames` (the tangent-frame specs) from their ALU counts (`[encode, decode]`),
+/// proving the decoder bounds and measuring the filtering and the frames here.
+pub fn compute(
+    specs: &[Spec],
+    stats: &[Option<ErrorStats>],
+    alu: &[[u32; 4]],
+    frames: &[Spec],
+    frame_alu: &[[u32; 2]],
+) -> Catalogue {
     assert_eq!(specs.len(), stats.len());
     assert_eq!(specs.len(), alu.len());
+    assert_eq!(frames.len(), frame_alu.len());
     crate::measure::decode_bound::prove_all(specs);
     let rows = crate::support::par::map(specs, |spec| {
         let e = spec.emitted();
@@ -172,6 +230,7 @@ pub fn compute(specs: &[Spec], stats: &[Option<ErrorStats>], alu: &[[u32; 4]]) -
             },
         )
     });
+    let frame_rows = frame_entries(frames, frame_alu);
     let samples = stats
         .iter()
         .flatten()
@@ -208,6 +267,17 @@ pub fn compute(specs: &[Spec], stats: &[Option<ErrorStats>], alu: &[[u32; 4]]) -
                         .unfilterable()
                         .map(str::to_string),
                     filtering,
+                    seam: spec.family().float_form(spec).seam().map(str::to_string),
+                    tables: spec
+                        .family()
+                        .tables(spec)
+                        .into_iter()
+                        .map(|t| TableSize {
+                            name: t.stem,
+                            bytes: t.bytes.len(),
+                        })
+                        .collect(),
+                    engine: spec.family().engine(spec).map(str::to_string),
                 }
             },
         )
@@ -218,5 +288,36 @@ pub fn compute(specs: &[Spec], stats: &[Option<ErrorStats>], alu: &[[u32; 4]]) -
         filter_seed: format!("{:#x}", filtering::SEED),
         filter_pairs: filtering::PAIRS,
         specs,
+        frame_samples: frame_rows.first().map_or(0, |r| r.0),
+        frames: frame_rows.into_iter().map(|r| r.1).collect(),
     }
+}
+
+/// The catalogue rows of the tangent-frame specs, each with its sample size.
+fn frame_entries(frames: &[Spec], alu: &[[u32; 2]]) -> Vec<(usize, FrameEntry)> {
+    crate::support::par::map(frames, |spec| {
+        crate::measure::quality::measure_frames(spec).expect("a tangent-frame spec")
+    })
+    .into_iter()
+    .zip(frames.iter().zip(alu))
+    .map(|(st, (spec, a))| {
+        (
+            st.samples,
+            FrameEntry {
+                spec: spec.id(),
+                family: spec.info().name.to_string(),
+                bits: spec.bits(),
+                normal: st.normal,
+                tangent: st.tangent,
+                bitangent: st.bitangent,
+                flips: st.flips,
+                alu: FrameAlu {
+                    encode: a[0],
+                    decode: a[1],
+                },
+                engine: spec.family().engine(spec).map(str::to_string),
+            },
+        )
+    })
+    .collect()
 }

@@ -6,6 +6,7 @@
 
 use super::catalogue::{Catalogue, Entry};
 use super::filtering::DECIDING_SEPARATION;
+use super::query::{Empty, Query};
 use crate::codecs::core::storage::Holds;
 
 /// What the ranking orders by, best first.
@@ -51,41 +52,6 @@ impl Order {
     }
 }
 
-/// A user's constraints, as `choose` takes them.
-#[derive(Clone, Debug, Default, PartialEq, clap::Args)]
-pub struct Query {
-    /// Total bits of the packed code; with `--filterable`, bits a texel of the float
-    /// form's filterable format costs (which may be wider than the code).
-    #[arg(long, value_name = "N")]
-    pub bits: Option<u32>,
-    /// A storage format the code or float form is written to, in any API's spelling:
-    /// rg8snorm, snorm16x2, VK_FORMAT_R16G16_UNORM, DXGI_FORMAT_R8G8_UNORM, bc5-rg-unorm.
-    #[arg(long, value_name = "F")]
-    pub format: Option<String>,
-    /// The codec's domain.
-    #[arg(long, value_parser = ["sphere", "hemisphere"])]
-    pub domain: Option<String>,
-    /// Only specs whose float form is stored in a format texture units filter and
-    /// survives linear filtering and four-sample resolves there: the 99th percentile of
-    /// the filtering error at 5° apart at most DEG degrees.
-    #[arg(
-        long,
-        value_name = "DEG",
-        num_args = 0..=1,
-        default_missing_value = "1"
-    )]
-    pub filterable: Option<f64>,
-    /// At most N ALU instructions in the packed encoder.
-    #[arg(long, value_name = "N")]
-    pub max_encode_alu: Option<u32>,
-    /// At most N ALU instructions in the packed decoder.
-    #[arg(long, value_name = "N")]
-    pub max_decode_alu: Option<u32>,
-    /// Only packed encoders that give the same code on every conformant GPU.
-    #[arg(long)]
-    pub portable: bool,
-}
-
 /// Refuses a `--format` that is no spelling of any format in the catalogue (a typo such as
 /// `rg8snrom` would otherwise read as "no spec meets it"), naming the nearest spellings.
 fn unknown_format(catalogue: &Catalogue, typed: &str) -> Result<(), Empty> {
@@ -122,16 +88,6 @@ fn unknown_format(catalogue: &Catalogue, typed: &str) -> Result<(), Empty> {
 pub struct Choice<'a> {
     pub entry: &'a Entry,
     pub why: String,
-}
-
-/// Nothing met the constraints.
-#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("no spec meets {constraint}; {before}")]
-pub struct Empty {
-    /// The constraint that emptied the list, as typed (`--bits 17`).
-    pub constraint: String,
-    /// What was left before it.
-    pub before: String,
 }
 
 type Test = Box<dyn Fn(&Entry) -> bool>;

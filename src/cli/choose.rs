@@ -1,8 +1,11 @@
 //! `choose`: the ranked table (or JSON) of the specs that meet a user's constraints.
 
+use crate::choice::catalogue::FrameEntry;
 use crate::choice::catalogue::{Catalogue, Entry};
-use crate::choice::choose::{Choice, Order, Query, choose};
+use crate::choice::choose::{Choice, Order, choose};
 use crate::choice::filtering::DECIDING_SEPARATION;
+use crate::choice::profiles::{ALU_WEIGHT, rank, rank_frames};
+use crate::choice::query::{Query, Use};
 use serde::Serialize;
 
 /// A figure with a fixed number of decimals, or `-`.
@@ -71,8 +74,64 @@ struct Ranked<'a> {
     entry: &'a Entry,
 }
 
-/// The ranked table, `limit` rows at most (0: all), or the JSON of every row.
-pub fn run(query: &Query, order: Order, json: bool, limit: usize) -> anyhow::Result<String> {
+/// A row of `choose --use`: the spec, the route it takes and its score.
+#[derive(Serialize)]
+struct RankedUse<'a> {
+    rank: usize,
+    why: &'a str,
+    score: f64,
+    /// The error the score counts, degrees.
+    error: f64,
+    /// ALU instructions the score counts.
+    cost: u32,
+    /// The format the profile stores it in (null: the code as it is), its bits, and
+    /// the instructions of the encoder and decoder that route runs.
+    stored_in: Option<&'a str>,
+    stored_bits: u32,
+    route_encode: u32,
+    route_decode: u32,
+    #[serde(flatten)]
+    entry: &'a Entry,
+}
+
+/// A row of `choose --use frame`.
+#[derive(Serialize)]
+struct RankedFrameJson<'a> {
+    rank: usize,
+    why: &'a str,
+    score: f64,
+    error: f64,
+    #[serde(flatten)]
+    entry: &'a FrameEntry,
+}
+
+/// The rows a limit shows, and the line that says how many more there are.
+fn shown(total: usize, limit: usize) -> (usize, String) {
+    let n = if limit == 0 { total } else { limit.min(total) };
+    let more = if n < total {
+        format!("… and {} more (--limit 0 shows all)\n", total - n)
+    } else {
+        String::new()
+    };
+    (n, more)
+}
+
+/// JSON text of `rows`, with a final newline.
+fn json_text<T: Serialize>(rows: &[T]) -> anyhow::Result<String> {
+    let mut s = serde_json::to_string_pretty(rows)?;
+    s.push('\n');
+    Ok(s)
+}
+
+/// The ranked table, `limit` rows at most (0: all), or the JSON of every row; `--use`
+/// (or `--domain frame`) ranks by its profile's score, anything else by `order`
+/// (`None`: the sample max).
+pub fn run(
+    query: &Query,
+    order: Option<Order>,
+    json: bool,
+    limit: usize,
+) -> anyhow::Result<String> {
     let c = Catalogue::load();
     // A spec without figures cannot be ranked: said on stderr, where a script's parse of
     // the table or the JSON is not disturbed.
@@ -84,14 +143,46 @@ pub fn run(query: &Query, order: Order, json: bool, limit: usize) -> anyhow::Res
             crate::choice::catalogue::PATH
         );
     }
-    let ranked: Vec<Choice> = choose(&c, query, order)?;
-    let shown = if limit == 0 {
-        ranked.len()
-    } else {
-        limit.min(ranked.len())
+    let frame_domain = query.domain.as_deref() == Some("frame");
+    let use_case = match (query.use_case, frame_domain) {
+        (None, true) | (Some(Use::Frame), _) => Some(Use::Frame),
+        (Some(u), true) => anyhow::bail!(
+            "--domain frame ranks tangent frames, as --use frame does; --use {} ranks vectors",
+            u.name()
+        ),
+        (u, false) => u,
     };
+    if query.no_filter && use_case != Some(Use::Gbuffer) {
+        anyhow::bail!(
+            "--no-filter belongs to --use gbuffer (the other uses either never filter or always do)"
+        );
+    }
+    if let (Some(u), Some(_)) = (use_case, order) {
+        anyhow::bail!(
+            "--by ranks a plain query; --use {} ranks by its profile's score \
+             (docs/design/choosing.md): drop one of them",
+            u.name()
+        );
+    }
+    match use_case {
+        Some(Use::Frame) => frames(&c, query, json, limit),
+        Some(u) => by_use(&c, query, u, json, limit),
+        None => plain(&c, query, order.unwrap_or(Order::Max), json, limit),
+    }
+}
+
+/// `choose` without `--use`.
+fn plain(
+    c: &Catalogue,
+    query: &Query,
+    order: Order,
+    json: bool,
+    limit: usize,
+) -> anyhow::Result<String> {
+    let ranked: Vec<Choice> = choose(c, query, order)?;
+    let (n, more) = shown(ranked.len(), limit);
     if json {
-        let rows: Vec<Ranked> = ranked[..shown]
+        let rows: Vec<Ranked> = ranked[..n]
             .iter()
             .enumerate()
             .map(|(i, ch)| Ranked {
@@ -100,23 +191,114 @@ pub fn run(query: &Query, order: Order, json: bool, limit: usize) -> anyhow::Res
                 entry: ch.entry,
             })
             .collect();
-        let mut s = serde_json::to_string_pretty(&rows)?;
-        s.push('\n');
-        return Ok(s);
+        return json_text(&rows);
     }
     let mut s = format!("{}\n", header());
-    for ch in &ranked[..shown] {
-        s.push_str(&row(ch.entry));
-        s.push('\n');
-        s.push_str(&format!("  {}\n", ch.why));
+    for ch in &ranked[..n] {
+        s.push_str(&format!("{}\n  {}\n", row(ch.entry), ch.why));
     }
-    if shown < ranked.len() {
+    Ok(format!("{s}{more}\n{}", legend(c)))
+}
+
+/// How a profile ranks, for the line above its table.
+fn score_words(u: Use) -> String {
+    match u {
+        Use::Asset => "ranked by sample max".into(),
+        _ => format!("ranked by score = error × (1 + ALU / {ALU_WEIGHT})"),
+    }
+}
+
+/// `choose --use` for vectors.
+fn by_use(
+    c: &Catalogue,
+    query: &Query,
+    u: Use,
+    json: bool,
+    limit: usize,
+) -> anyhow::Result<String> {
+    let ranked = rank(c, query, u)?;
+    let (n, more) = shown(ranked.len(), limit);
+    if json {
+        let rows: Vec<RankedUse> = ranked[..n]
+            .iter()
+            .enumerate()
+            .map(|(i, r)| RankedUse {
+                rank: i + 1,
+                why: &r.why,
+                score: r.route.score,
+                error: r.route.error,
+                cost: r.route.cost,
+                stored_in: r.route.format.map(|f| f.name()),
+                stored_bits: r.route.bits,
+                route_encode: r.route.encode,
+                route_decode: r.route.decode,
+                entry: r.entry,
+            })
+            .collect();
+        return json_text(&rows);
+    }
+    let mut s = format!(
+        "{}; {}\n{}\n",
+        u.what(u.filters(query)),
+        score_words(u),
+        header()
+    );
+    for r in &ranked[..n] {
+        s.push_str(&format!("{}\n  {}\n", row(r.entry), r.why));
+    }
+    Ok(format!("{s}{more}\n{}", legend(c)))
+}
+
+/// `choose --use frame`.
+fn frames(c: &Catalogue, query: &Query, json: bool, limit: usize) -> anyhow::Result<String> {
+    let ranked = rank_frames(c, query)?;
+    let (n, more) = shown(ranked.len(), limit);
+    if json {
+        let rows: Vec<RankedFrameJson> = ranked[..n]
+            .iter()
+            .enumerate()
+            .map(|(i, r)| RankedFrameJson {
+                rank: i + 1,
+                why: &r.why,
+                score: r.score,
+                error: r.error,
+                entry: r.entry,
+            })
+            .collect();
+        return json_text(&rows);
+    }
+    let mut s = format!(
+        "{}; {}\n{:<20} {:>4} {:>19} {:>19} {:>19} {:>5} {:>5} {:>5}  engine\n",
+        Use::Frame.what(false),
+        score_words(Use::Frame),
+        "spec",
+        "bits",
+        "normal°",
+        "tangent°",
+        "bitangent°",
+        "flips",
+        "enc",
+        "dec"
+    );
+    let pair = |[mean, max]: [f64; 2]| format!("{mean:.5} / {max:.5}");
+    for r in &ranked[..n] {
+        let e = r.entry;
         s.push_str(&format!(
-            "… and {} more (--limit 0 shows all)\n",
-            ranked.len() - shown
+            "{:<20} {:>4} {:>19} {:>19} {:>19} {:>5} {:>5} {:>5}  {}\n  {}\n",
+            e.spec,
+            e.bits,
+            pair(e.normal),
+            pair(e.tangent),
+            pair(e.bitangent),
+            e.flips,
+            e.alu.encode,
+            e.alu.decode,
+            e.engine.as_deref().unwrap_or("-"),
+            r.why
         ));
     }
-    s.push('\n');
-    s.push_str(&legend(&c));
-    Ok(s)
+    Ok(format!(
+        "{s}{more}\nnormal°, tangent°, bitangent°: mean / sample max of the angle error over {} seeded orthonormal frames (not a bound). flips: frames whose handedness changed. enc, dec: ALU instructions of the packed encoder and decoder. engine: the engine that reads these bits.\n",
+        c.frame_samples
+    ))
 }

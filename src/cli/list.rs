@@ -1,6 +1,6 @@
 //! `list`: every family with the specs a user types, as a table or as JSON.
 
-use crate::choice::catalogue::{Catalogue, Entry};
+use crate::choice::catalogue::{Catalogue, Entry, FrameEntry};
 use crate::codecs::FAMILIES;
 use crate::codecs::core::info::OptKind;
 use serde::Serialize;
@@ -104,6 +104,10 @@ struct ListJson {
     /// Every spec of the catalogue (`generate` writes one include for each), by id,
     /// with its figures.
     specs: Vec<Entry>,
+    /// Seeded orthonormal frames behind each tangent-frame spec's figures.
+    frame_samples: usize,
+    /// Every tangent-frame spec with its figures.
+    frames: Vec<FrameEntry>,
 }
 
 #[derive(Serialize)]
@@ -191,6 +195,8 @@ pub fn list_json() -> String {
         filter_pairs: c.filter_pairs,
         filter_deciding_separation: crate::choice::filtering::DECIDING_SEPARATION,
         specs: c.specs,
+        frame_samples: c.frame_samples,
+        frames: c.frames,
     })
     .expect("list serializes");
     s.push('\n');

@@ -91,12 +91,18 @@ pub enum Command {
     /// --max-encode-alu, --max-decode-alu, --portable; when nothing is left, the error
     /// names the constraint that emptied the list and what was left before it. Each row
     /// is followed by a line saying why the spec is there.
+    ///
+    /// --use gbuffer|vertex|asset|normal-map|frame ranks for what the normals are for:
+    /// each spec is stored where that use stores it (within --bits, a texel's or a
+    /// vertex's), and scored as error × (1 + ALU/100) with the instructions that use runs
+    /// per pixel or per vertex; the line under each row names what decided it and what
+    /// the next row trades.
     Choose {
         #[command(flatten)]
-        query: crate::choice::choose::Query,
-        /// What to rank by, best first.
-        #[arg(long, value_enum, default_value = "max")]
-        by: crate::choice::choose::Order,
+        query: crate::choice::query::Query,
+        /// What to rank by, best first (default: max); `--use` ranks by its own score.
+        #[arg(long, value_enum)]
+        by: Option<crate::choice::choose::Order>,
         /// Print JSON instead of the table.
         #[arg(long)]
         json: bool,

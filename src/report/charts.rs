@@ -6,18 +6,19 @@ use anyhow::{Result, anyhow};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-/// One series of points: its name, colour and `(x, y)` points.
+/// One series of points: its name, colour and `(x, y, label)` points, the label being
+/// what the point's SVG `<title>` names (a spec id).
 pub struct Series {
     pub name: &'static str,
     pub colour: RGBColor,
-    pub points: Vec<(f64, f64)>,
+    pub points: Vec<(f64, f64, String)>,
 }
 
 /// The series' colours, by kind.
 pub const SPHERE: RGBColor = RGBColor(31, 119, 180);
 pub const HEMISPHERE: RGBColor = RGBColor(214, 39, 40);
 
-const SIZE: (u32, u32) = (560, 360);
+const SIZE: (u32, u32) = (560, 380);
 
 fn err(e: impl std::fmt::Display) -> anyhow::Error {
     anyhow!("cannot draw a chart: {e}")
@@ -35,7 +36,8 @@ fn svg(draw: impl FnOnce(&DrawingArea<SVGBackend, Shift>) -> Result<()>) -> Resu
     Ok(text)
 }
 
-/// The range of `values`, widened by a margin; for a log axis, by a factor.
+/// The range of `values`, widened by a margin: 5% of the span on a linear axis (fitted to
+/// the data, not to zero), a factor of 1.5 on a logarithmic one.
 fn range(values: impl Iterator<Item = f64>, log: bool) -> (f64, f64) {
     let (lo, hi) = values
         .filter(|v| v.is_finite() && (!log || *v > 0.0))
@@ -48,12 +50,57 @@ fn range(values: impl Iterator<Item = f64>, log: bool) -> (f64, f64) {
     if log {
         (lo / 1.5, hi * 1.5)
     } else {
-        let pad = ((hi - lo) * 0.05).max(1.0);
-        ((lo - pad).min(0.0), hi + pad)
+        let pad = ((hi - lo) * 0.05).max(0.5);
+        (lo - pad, hi + pad)
     }
 }
 
-/// A scatter chart: x linear, y linear or logarithmic.
+/// A tick label a reader takes in at once: `0.25`, `1500`, `1e-4` (never
+/// `9.999999999999999e-5`).
+pub fn tick(v: f64) -> String {
+    let a = v.abs();
+    if a == 0.0 {
+        return "0".into();
+    }
+    if !(1e-3..1e5).contains(&a) {
+        let t = format!("{v:.0e}");
+        return t;
+    }
+    // Three significant digits, trailing zeros dropped.
+    let decimals = (2 - a.log10().floor() as i32).max(0) as usize;
+    let t = format!("{v:.decimals$}");
+    if t.contains('.') {
+        t.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        t
+    }
+}
+
+/// The points no other point beats on both axes (lower is better on each), by x.
+pub fn pareto(points: &[(f64, f64, String)]) -> Vec<(f64, f64, String)> {
+    let mut sorted: Vec<&(f64, f64, String)> = points.iter().collect();
+    sorted.sort_by(|a, b| {
+        a.0.total_cmp(&b.0)
+            .then(a.1.total_cmp(&b.1))
+            .then(a.2.cmp(&b.2))
+    });
+    let mut front: Vec<(f64, f64, String)> = Vec::new();
+    for p in sorted {
+        if front.last().is_none_or(|l| p.1 < l.1) {
+            if front.last().is_some_and(|l| l.0 == p.0) {
+                front.pop();
+            }
+            front.push(p.clone());
+        }
+    }
+    front
+}
+
+/// A scatter chart, each axis linear or logarithmic. Every point carries an SVG `<title>`
+/// (plotters draws no per-element title, so the chart's circles, which are the points in
+/// the order drawn, are given theirs afterwards); the Pareto front is drawn as a line and
+/// its points labelled. No legend is drawn over the data: the page says what the colours
+/// are ([`legend_html`]).
 pub fn scatter(
     title: &str,
     x_desc: &str,
@@ -62,15 +109,24 @@ pub fn scatter(
     log_y: bool,
     series: &[Series],
 ) -> Result<String> {
-    let all = || series.iter().flat_map(|s| s.points.iter().copied());
-    let (x0, x1) = range(all().map(|p| p.0), log_x);
-    let (y0, y1) = range(all().map(|p| p.1), log_y);
-    svg(|root| {
+    let shown = |p: &&(f64, f64, String)| {
+        p.0.is_finite() && p.1.is_finite() && (!log_x || p.0 > 0.0) && (!log_y || p.1 > 0.0)
+    };
+    let all: Vec<(f64, f64, String)> = series
+        .iter()
+        .flat_map(|s| s.points.iter().filter(shown).cloned())
+        .collect();
+    let (x0, x1) = range(all.iter().map(|p| p.0), log_x);
+    let (y0, y1) = range(all.iter().map(|p| p.1), log_y);
+    let front = pareto(&all);
+    let fmt = |v: &f64| tick(*v);
+    let text = svg(|root| {
         let mut b = ChartBuilder::on(root);
         b.caption(title, ("sans-serif", 18))
             .margin(12)
+            .margin_right(24)
             .x_label_area_size(40)
-            .y_label_area_size(64);
+            .y_label_area_size(72);
         // The four axis kinds are four chart types; one body draws them all.
         macro_rules! body {
             ($chart:expr) => {{
@@ -79,6 +135,8 @@ pub fn scatter(
                     .configure_mesh()
                     .x_desc(x_desc)
                     .y_desc(y_desc)
+                    .x_label_formatter(&fmt)
+                    .y_label_formatter(&fmt)
                     .draw()
                     .map_err(err)?;
                 for s in series {
@@ -87,18 +145,22 @@ pub fn scatter(
                         .draw_series(
                             s.points
                                 .iter()
-                                .filter(|p| p.0.is_finite() && p.1.is_finite())
-                                .map(|&p| Circle::new(p, 3, c.mix(0.7).filled())),
+                                .filter(shown)
+                                .map(|p| Circle::new((p.0, p.1), 3, c.mix(0.7).filled())),
                         )
-                        .map_err(err)?
-                        .label(s.name)
-                        .legend(move |(x, y)| Circle::new((x, y), 4, c.filled()));
+                        .map_err(err)?;
                 }
                 chart
-                    .configure_series_labels()
-                    .border_style(BLACK)
-                    .background_style(WHITE.mix(0.9))
-                    .draw()
+                    .draw_series(LineSeries::new(
+                        front.iter().map(|p| (p.0, p.1)),
+                        BLACK.mix(0.5),
+                    ))
+                    .map_err(err)?;
+                chart
+                    .draw_series(front.iter().map(|p| {
+                        EmptyElement::at((p.0, p.1))
+                            + Text::new(p.2.clone(), (5, -12), ("sans-serif", 11))
+                    }))
                     .map_err(err)?;
             }};
         }
@@ -111,7 +173,49 @@ pub fn scatter(
             }
         }
         Ok(())
-    })
+    })?;
+    titled(&text, &all)
+}
+
+/// `svg` with each `<circle .../>`, in order, given the `<title>` of the point drawn.
+fn titled(svg: &str, points: &[(f64, f64, String)]) -> Result<String> {
+    let mut out = String::with_capacity(svg.len() + points.len() * 64);
+    let mut rest = svg;
+    let mut names = points.iter();
+    while let Some(at) = rest.find("<circle") {
+        let end = rest[at..]
+            .find("/>")
+            .ok_or_else(|| anyhow!("an unclosed circle in the chart"))?;
+        let p = names
+            .next()
+            .ok_or_else(|| anyhow!("the chart has more circles than points"))?;
+        out.push_str(&rest[..at + end]);
+        out.push_str(&format!(
+            "><title>{}: {}, {}</title></circle>",
+            super::escape(&p.2),
+            tick(p.0),
+            tick(p.1)
+        ));
+        rest = &rest[at + end + 2..];
+    }
+    if names.next().is_some() {
+        return Err(anyhow!("the chart drew fewer circles than it has points"));
+    }
+    out.push_str(rest);
+    Ok(out)
+}
+
+/// What a chart's colours and line mean, as HTML under it.
+pub fn legend_html(series: &[(&str, RGBColor)]) -> String {
+    let mut s = String::from("<figcaption class=\"chart-legend\">");
+    for (name, c) in series {
+        s.push_str(&format!(
+            "<span><span class=\"dot\" style=\"background:#{:02X}{:02X}{:02X}\"></span> {name}</span> ",
+            c.0, c.1, c.2
+        ));
+    }
+    s.push_str("<span>— the Pareto front (nothing is better on both axes), labelled; hover a point for its spec</span></figcaption>");
+    s
 }
 
 /// Bins of a histogram.

@@ -163,16 +163,25 @@ pub fn colour(t: f64) -> [u8; 3] {
 /// Grey: outside the domain.
 const OUTSIDE: [u8; 3] = [200, 200, 200];
 
-/// `map` as RGB pixels, each cell `scale` pixels square, coloured from 0 to `top`
-/// degrees.
-pub fn pixels(map: &Map, top: f64, scale: usize) -> (u32, u32, Vec<u8>) {
+/// The error, in degrees, at the bottom and the top of the one colour scale every map of
+/// every family shares, so that two pages compare by eye: the colour follows log10 of the
+/// error, clamped to this range (a smaller error takes the bottom colour, a larger the top).
+pub const SCALE_DEGREES: (f64, f64) = (1e-3, 10.0);
+
+/// Where `e` degrees lies on the shared scale, in `[0, 1]`.
+pub fn scale_position(e: f64) -> f64 {
+    let (lo, hi) = SCALE_DEGREES;
+    ((e.max(lo).log10() - lo.log10()) / (hi.log10() - lo.log10())).clamp(0.0, 1.0)
+}
+
+/// `map` as RGB pixels, each cell `scale` pixels square, coloured on the shared scale.
+pub fn pixels(map: &Map, scale: usize) -> (u32, u32, Vec<u8>) {
     let (w, h) = (map.width * scale, map.height * scale);
     let mut px = Vec::with_capacity(w * h * 3);
     for y in 0..h {
         for x in 0..w {
             let c = match map.cells[(y / scale) * map.width + x / scale] {
-                Some(e) if top > 0.0 => colour(e / top),
-                Some(_) => colour(0.0),
+                Some(e) => colour(scale_position(e)),
                 None => OUTSIDE,
             };
             px.extend_from_slice(&c);
@@ -181,7 +190,8 @@ pub fn pixels(map: &Map, top: f64, scale: usize) -> (u32, u32, Vec<u8>) {
     (w as u32, h as u32, px)
 }
 
-/// The legend: the scale from 0 (left) to its top (right), `width` × `height` pixels.
+/// The legend: the shared scale from its bottom (left) to its top (right), `width` ×
+/// `height` pixels, evenly spaced in log10 of the error.
 pub fn legend(width: usize, height: usize) -> (u32, u32, Vec<u8>) {
     let mut px = Vec::with_capacity(width * height * 3);
     for _ in 0..height {

@@ -34,11 +34,22 @@ pub const MANIFEST: &str = ".unitpack-report";
 #[derive(Template)]
 #[template(path = "report/index.html")]
 struct Index<'a> {
+    picks_note: String,
+    picks: Vec<String>,
     intro: String,
     filtering_note: String,
     families: Vec<FamilyLink<'a>>,
     charts: Vec<String>,
     deciding: f64,
+    rows: Vec<String>,
+}
+
+#[derive(Template)]
+#[template(path = "report/frames.html")]
+struct FramesPage {
+    intro: String,
+    ranking_note: String,
+    picks: Vec<String>,
     rows: Vec<String>,
 }
 
@@ -57,6 +68,9 @@ struct FamilyPage<'a> {
     equirect_w: usize,
     equirect_h: usize,
     oct_w: usize,
+    /// The shared colour scale's ends, degrees.
+    scale_lo: String,
+    scale_hi: String,
     specs: Vec<SpecSection>,
 }
 
@@ -315,19 +329,22 @@ pub fn render(catalogue: &Catalogue, progress: &(dyn Fn() + Sync)) -> Result<Fil
         "check.js".into(),
         include_bytes!("../../templates/report/check.js").to_vec(),
     );
+    files.insert(
+        "table.js".into(),
+        include_bytes!("../../templates/report/table.js").to_vec(),
+    );
     files.insert("maps/legend.png".into(), png(maps::legend(256, 12))?);
 
     let mut sections: BTreeMap<&str, Vec<SpecSection>> = BTreeMap::new();
     for ((e, spec), m) in catalogue.specs.iter().zip(&specs).zip(&measured) {
-        // One scale for both views of a spec, so that they can be compared.
         let top = m.equirect.max().max(m.octahedral.max());
         files.insert(
             format!("maps/{}_equirect.png", e.spec).into(),
-            png(maps::pixels(&m.equirect, top, SCALE))?,
+            png(maps::pixels(&m.equirect, SCALE))?,
         );
         files.insert(
             format!("maps/{}_octahedral.png", e.spec).into(),
-            png(maps::pixels(&m.octahedral, top, SCALE))?,
+            png(maps::pixels(&m.octahedral, SCALE))?,
         );
         let histogram = charts::histogram(
             &format!("{}: error of {} vectors", e.spec, maps::HISTOGRAM_SAMPLES),
@@ -371,6 +388,8 @@ pub fn render(catalogue: &Catalogue, progress: &(dyn Fn() + Sync)) -> Result<Fil
             equirect_w: maps::EQUIRECT.0 * SCALE * SHOWN,
             equirect_h: maps::EQUIRECT.1 * SCALE * SHOWN,
             oct_w: maps::OCTAHEDRAL * SCALE * SHOWN,
+            scale_lo: charts::tick(maps::SCALE_DEGREES.0),
+            scale_hi: charts::tick(maps::SCALE_DEGREES.1),
             specs,
         };
         files.insert(
@@ -380,7 +399,48 @@ pub fn render(catalogue: &Catalogue, progress: &(dyn Fn() + Sync)) -> Result<Fil
                 .into_bytes(),
         );
     }
+    let winners = crate::choice::recommend::winners(catalogue);
+    let frames = FramesPage {
+        intro: format!(
+            "Each tangent-frame spec stores a normal, a tangent and the bitangent's sign. \
+             Errors are the angle between each decoded vector and its reference over {} \
+             seeded orthonormal frames, mean and sample maximum (not a bound), in degrees; \
+             a flip is a frame whose handedness changed. ALU: the packed encoder and \
+             decoder. Engine: the engine that reads these bits as they are.",
+            catalogue.frame_samples
+        ),
+        ranking_note: "Frames are encoded offline and decoded per vertex: choose --use frame \
+             ranks them by the worst sample max of normal, tangent and bitangent × (1 + \
+             decode ALU/100), leaving out any that flips a handedness."
+            .into(),
+        picks: winners
+            .iter()
+            .filter(|(c, _)| c.query.use_case == Some(crate::choice::query::Use::Frame))
+            .flat_map(|(c, w)| pick_rows(c, w.as_ref()))
+            .collect(),
+        rows: catalogue.frames.iter().map(frame_row).collect(),
+    };
+    files.insert(
+        "frames.html".into(),
+        frames
+            .render()
+            .context("cannot render the frames page")?
+            .into_bytes(),
+    );
     let index = Index {
+        picks_note: format!(
+            "What unitpack choose --use USE ranks first for each use and size: each spec \
+             stored as the use stores it, within the bits (a texel's, a vertex's or a \
+             record's), scored as error × (1 + ALU/100) with the instructions the use runs \
+             per pixel or vertex. Error: the round trip's sample max over {} vectors; \
+             where the use filters, the worse of it and the filtering p99 at \
+             {DECIDING_SEPARATION}° apart. The line under each says what decided it.",
+            catalogue.samples
+        ),
+        picks: winners
+            .iter()
+            .flat_map(|(c, w)| pick_rows(c, w.as_ref()))
+            .collect(),
         intro: format!(
             "Every spec of the catalogue: round-trip angular error of the packed code over \
              {} seeded unit vectors (seed {}; hemisphere codecs over +Z), the mean and the \
@@ -412,27 +472,84 @@ pub fn render(catalogue: &Catalogue, progress: &(dyn Fn() + Sync)) -> Result<Fil
     Ok(files)
 }
 
+/// A case's two rows in a table of picks: the first choice and, under it, why.
+fn pick_rows(
+    case: &crate::choice::recommend::Case,
+    w: Option<&crate::choice::recommend::Winner>,
+) -> Vec<String> {
+    let command = format!(
+        "<td><code>unitpack choose {}</code></td>",
+        escape(&case.args().join(" "))
+    );
+    let Some(w) = w else {
+        return vec![format!(
+            "<tr class=\"pick\">{}{command}<td colspan=\"4\">none</td></tr>",
+            text(&case.what())
+        )];
+    };
+    let page = if case.query.use_case == Some(crate::choice::query::Use::Frame) {
+        "frames.html".to_string()
+    } else {
+        format!("family/{}.html", escape(&w.family))
+    };
+    vec![
+        format!(
+            "<tr class=\"pick\" data-spec=\"{id}\">{}{command}<td><a href=\"{page}#{id}\">{id}</a></td>{}{}{}</tr>",
+            text(&case.what()),
+            text(&w.stored),
+            num(w.error, 4),
+            text(&format!("{} / {}", w.encode, w.decode)),
+            id = escape(&w.spec),
+        ),
+        format!(
+            "<tr class=\"why\"><td colspan=\"6\">{}</td></tr>",
+            escape(&w.why)
+        ),
+    ]
+}
+
+/// The frames page's row of a frame spec.
+fn frame_row(f: &crate::choice::catalogue::FrameEntry) -> String {
+    format!(
+        "<tr id=\"{id}\" data-spec=\"{id}\"><td>{id}</td>{}{}{}{}{}{}{}{}{}{}{}</tr>",
+        int(f.bits),
+        num(f.normal[0], 5),
+        num(f.normal[1], 5),
+        num(f.tangent[0], 5),
+        num(f.tangent[1], 5),
+        num(f.bitangent[0], 5),
+        num(f.bitangent[1], 5),
+        int(f.flips as u32),
+        int(f.alu.encode),
+        int(f.alu.decode),
+        text(f.engine.as_deref().unwrap_or("—")),
+        id = escape(&f.spec),
+    )
+}
+
 /// The index's trade-off charts.
 fn index_charts(c: &Catalogue) -> Result<Vec<String>> {
+    let kinds = [
+        ("sphere", charts::SPHERE),
+        ("hemisphere", charts::HEMISPHERE),
+    ];
     let by_domain = |f: &dyn Fn(&Entry) -> Option<(f64, f64)>| -> Vec<charts::Series> {
-        [
-            ("sphere", charts::SPHERE),
-            ("hemisphere", charts::HEMISPHERE),
-        ]
-        .into_iter()
-        .map(|(d, colour)| charts::Series {
-            name: d,
-            colour,
-            points: c
-                .specs
-                .iter()
-                .filter(|e| e.domain == d)
-                .filter_map(f)
-                .collect(),
-        })
-        .collect()
+        kinds
+            .into_iter()
+            .map(|(d, colour)| charts::Series {
+                name: d,
+                colour,
+                points: c
+                    .specs
+                    .iter()
+                    .filter(|e| e.domain == d)
+                    .filter_map(|e| f(e).map(|(x, y)| (x, y, e.spec.clone())))
+                    .collect(),
+            })
+            .collect()
     };
-    Ok(vec![
+    let legend = charts::legend_html(&kinds);
+    let charts = [
         charts::scatter(
             "Mean error against bits",
             "bits",
@@ -466,17 +583,22 @@ fn index_charts(c: &Catalogue) -> Result<Vec<String>> {
             &by_domain(&|e| Some((e.mean, f64::from(e.alu.encode)))),
         )?,
         charts::scatter(
-            &format!("Filtering p99 at {DECIDING_SEPARATION}° against bits"),
-            "bits",
+            &format!("Filtering p99 at {DECIDING_SEPARATION}° against texel bits"),
+            "bits a texel of the filterable format",
             "filtering p99 (degrees)",
             false,
             true,
             &by_domain(&|e| {
                 let f = e.filter_figure();
-                f.is_finite().then(|| (f64::from(e.bits), f.max(1e-6)))
+                let texel = e.filterable_storage()?;
+                f.is_finite().then(|| (f64::from(texel.bits), f.max(1e-6)))
             }),
         )?,
-    ])
+    ];
+    Ok(charts
+        .into_iter()
+        .map(|svg| format!("{svg}{legend}"))
+        .collect())
 }
 
 /// Writes `files` into `dir` under the folder policy above. Returns how many files it

@@ -5,6 +5,7 @@
 //! (wgpu and naga included), so one link serves all of them.
 
 mod choose;
+mod choose_use;
 mod common;
 mod convert;
 mod generate;

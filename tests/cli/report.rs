@@ -61,6 +61,16 @@ fn the_report_has_an_index_and_a_page_per_family_with_maps_and_charts() {
     }
     // Five trade-off charts.
     assert_eq!(index.matches("<svg").count(), 5);
+    // One colour scale on every family page.
+    for fam in &families {
+        let p = page(&format!("family/{fam}.html"));
+        assert!(
+            p.contains("≤ 0.001°")
+                && p.contains("≥ 10°")
+                && p.contains("One colour scale for every spec of every family"),
+            "{fam}: the shared scale"
+        );
+    }
     for e in list["specs"].as_array().unwrap() {
         let id = e["spec"].as_str().unwrap();
         for view in ["equirect", "octahedral"] {
@@ -126,6 +136,155 @@ fn the_reports_numbers_equal_list_json() {
         }
     }
     assert!(cells > 10, "{cells} MSE cells");
+}
+
+/// The texts of an SVG's `<text>` elements, trimmed.
+fn svg_texts(svg: &str) -> Vec<String> {
+    svg.split("</text>")
+        .filter_map(|s| s.rfind("<text").map(|at| &s[at..]))
+        .map(|s| s[s.find('>').unwrap() + 1..].trim().to_string())
+        .collect()
+}
+
+/// Every chart point names its spec in an SVG `<title>`; the Pareto front of mean error
+/// against bits, recomputed here from `list --json`, is labelled; tick labels are short
+/// (no `9.999999999999999e-5`); the bits axis is fitted to the data.
+#[test]
+fn every_chart_point_is_identifiable() {
+    let index = page("index.html");
+    let list: Value = serde_json::from_str(&ok(&["list", "--json"]).stdout).unwrap();
+    let specs = list["specs"].as_array().unwrap();
+    let charts: Vec<&str> = index
+        .split("<svg")
+        .skip(1)
+        .map(|s| s.split("</svg>").next().unwrap())
+        .collect();
+    assert_eq!(charts.len(), 5);
+    for c in &charts {
+        let circles = c.matches("<circle").count();
+        assert!(circles > 50, "{circles} points");
+        assert_eq!(
+            c.matches("</title></circle>").count(),
+            circles,
+            "a title per point"
+        );
+    }
+    // The mean-against-bits chart holds every spec, each titled `id: bits, mean`.
+    for e in specs {
+        let id = e["spec"].as_str().unwrap();
+        assert!(
+            charts[0].contains(&format!("<title>{id}: {}, ", e["bits"])),
+            "{id}"
+        );
+    }
+    // Its front: no spec has both fewer-or-equal bits and a lower mean.
+    let point = |e: &Value| (e["bits"].as_f64().unwrap(), e["mean"].as_f64().unwrap());
+    let texts = svg_texts(charts[0]);
+    let mut front = 0;
+    for e in specs {
+        let (b, m) = point(e);
+        let beaten = specs.iter().any(|o| {
+            let (ob, om) = point(o);
+            (ob < b && om <= m) || (ob == b && om < m)
+        });
+        if !beaten {
+            front += 1;
+            // Of specs at the same point, one label names the point.
+            let id = e["spec"].as_str().unwrap();
+            let labelled = specs
+                .iter()
+                .filter(|o| point(o) == point(e))
+                .any(|o| texts.iter().any(|t| t == o["spec"].as_str().unwrap()));
+            assert!(labelled, "{id} on the front is labelled");
+        }
+    }
+    assert!(front >= 5, "{front} on the front");
+    for c in &charts {
+        for t in svg_texts(c) {
+            if t.parse::<f64>().is_ok() {
+                assert!(t.len() <= 6, "a tick label {t:?}");
+            }
+        }
+    }
+    let ticks: Vec<f64> = svg_texts(charts[0])
+        .iter()
+        .filter_map(|t| t.parse().ok())
+        .collect();
+    let smallest_bits = specs
+        .iter()
+        .map(|e| e["bits"].as_f64().unwrap())
+        .fold(f64::INFINITY, f64::min);
+    assert!(
+        ticks
+            .iter()
+            .all(|&t| t < 1e-3 || t >= smallest_bits - 10.0 || t <= 1.0),
+        "the bits axis starts near the smallest spec: {ticks:?}"
+    );
+    assert!(
+        !ticks.contains(&0.0),
+        "the bits axis does not start at 0: {ticks:?}"
+    );
+}
+
+/// The index opens with each use's first choice, as `choose --use` answers it, and the
+/// frames page lists every frame spec with `list --json`'s figures.
+#[test]
+fn the_report_picks_by_use_and_ranks_frames() {
+    let index = page("index.html");
+    for (args, page_of) in [
+        (["--use", "gbuffer", "--bits", "32"], "family/"),
+        (["--use", "vertex", "--bits", "16"], "family/"),
+        (["--use", "frame", "--bits", "64"], "frames.html#"),
+    ] {
+        let r = ok(&[&["choose"][..], &args, &["--json", "--limit", "1"]].concat());
+        let v: Value = serde_json::from_str(&r.stdout).unwrap();
+        let id = v[0]["spec"].as_str().unwrap();
+        let row = index
+            .lines()
+            .find(|l| l.contains(&format!("<code>unitpack choose {}</code>", args.join(" "))))
+            .unwrap_or_else(|| panic!("a pick for {args:?}"));
+        assert!(
+            row.contains(&format!("data-spec=\"{id}\"")),
+            "{args:?}: {row}"
+        );
+        assert!(row.contains(page_of), "{row}");
+        let why = v[0]["why"].as_str().unwrap();
+        assert!(
+            index.contains(why.split(';').next().unwrap()),
+            "{args:?}: why"
+        );
+    }
+    assert!(index.contains("href=\"frames.html\""));
+    let frames = page("frames.html");
+    let list: Value = serde_json::from_str(&ok(&["list", "--json"]).stdout).unwrap();
+    for f in list["frames"].as_array().unwrap() {
+        let id = f["spec"].as_str().unwrap();
+        let row = frames
+            .lines()
+            .find(|l| l.starts_with(&format!("<tr id=\"{id}\"")))
+            .unwrap_or_else(|| panic!("{id} on the frames page"));
+        let v = values(row);
+        assert_eq!(
+            v[0].parse::<f64>().unwrap(),
+            f["bits"].as_f64().unwrap(),
+            "{id}"
+        );
+        assert_eq!(
+            v[2].parse::<f64>().unwrap(),
+            f["normal"][1].as_f64().unwrap(),
+            "{id}"
+        );
+        assert_eq!(
+            v[4].parse::<f64>().unwrap(),
+            f["tangent"][1].as_f64().unwrap(),
+            "{id}"
+        );
+        assert_eq!(
+            v[7].parse::<f64>().unwrap(),
+            f["flips"].as_f64().unwrap(),
+            "{id}"
+        );
+    }
 }
 
 /// A second run writes the same bytes (and so leaves every file as it was).
@@ -202,8 +361,22 @@ fn browse(rel: &str, args: &[&str]) -> (String, String) {
 /// image loaded, the charts in the DOM and a screenshot that is not blank.
 #[test]
 fn the_report_renders_in_chromium() {
-    for (rel, images) in [("index.html", 0), ("family/oct.html", 1)] {
+    for (rel, images) in [
+        ("index.html", 0),
+        ("family/oct.html", 1),
+        ("frames.html", 0),
+    ] {
         let (dom, log) = browse(rel, &["--dump-dom"]);
+        if rel == "index.html" {
+            // The charts' points keep their titles in the DOM, the picks are there, and
+            // the table's script ran (it titles each heading with how it sorts).
+            let file = page(rel);
+            let titled = file.matches("</title></circle>").count();
+            assert!(titled > 250, "{titled} titled points");
+            assert_eq!(dom.matches("</title></circle>").count(), titled);
+            assert!(dom.contains("<tr class=\"pick\""), "the picks");
+            assert!(dom.contains("title=\"sort by spec\""), "table.js ran");
+        }
         let console: Vec<&str> = log.lines().filter(|l| l.contains("CONSOLE")).collect();
         assert!(console.is_empty(), "{rel}: console messages {console:?}");
         let loaded = dom
@@ -222,7 +395,9 @@ fn the_report_renders_in_chromium() {
             assert_eq!(n, dom.matches("<img").count(), "{rel}");
             assert!(n >= 3, "{rel}");
         }
-        assert!(dom.contains("<svg"), "{rel}: the charts are in the DOM");
+        if rel != "frames.html" {
+            assert!(dom.contains("<svg"), "{rel}: the charts are in the DOM");
+        }
         let shot = tempdir();
         let png_path = shot.path().join("shot.png");
         browse(

@@ -129,7 +129,17 @@ fn the_choice_catalogue_is_fresh() {
     use unitpack::choice::catalogue::{self, Catalogue};
     let specs = codec_specs();
     let stats = crate::stats(&specs, README_SAMPLES);
-    let computed = catalogue::compute(&specs, &stats, &counts().four);
+    // The tangent-frame specs, with their packed encoder's and decoder's counts.
+    let frames: Vec<unitpack::codecs::Spec> = unitpack::codecs::Spec::all()
+        .into_iter()
+        .filter(|s| s.family().frames())
+        .collect();
+    let frame_alu: Vec<[u32; 2]> = count_all(&frames, &["encode", "decode"])
+        .unwrap_or_else(|e| panic!("cannot count the frames' ALU instructions: {e:#}"))
+        .into_iter()
+        .map(|c| [c[0], c[1]])
+        .collect();
+    let computed = catalogue::compute(&specs, &stats, &counts().four, &frames, &frame_alu);
     let fresh = computed.to_json();
     let path = root().join(catalogue::PATH);
     let text = std::fs::read_to_string(&path).unwrap_or_default();

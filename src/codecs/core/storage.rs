@@ -243,6 +243,12 @@ impl Format {
             .unwrap_or(&self.vulkan)
     }
 
+    /// Whether a render target can be of it (a shader writes it): every format but the
+    /// block-compressed ones, which only an offline compressor writes.
+    pub fn renderable(&self) -> bool {
+        !self.channels.contains(&Channel::Block)
+    }
+
     /// `rg8snorm (16 bits)`, as `list`, `choose` and the report print it.
     pub fn label(&self) -> String {
         format!("{} ({} bits)", self.name(), self.bits)

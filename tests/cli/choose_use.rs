@@ -1,0 +1,296 @@
+//! `choose --use`: every use at 16, 32 and 64 bits stores what it ranks in a format that
+//! holds it within the bits asked, and its order is the score docs/design/choosing.md
+//! states, recomputed here from `list --json` alone: per spec, the cheapest route among
+//! the formats the use may store it in, error × (1 + ALU/100).
+
+use crate::common::*;
+use serde_json::Value;
+
+const USES: [&str; 4] = ["gbuffer", "vertex", "asset", "normal-map"];
+
+/// `list --json`, parsed.
+fn list() -> Value {
+    serde_json::from_str(&ok(&["list", "--json"]).stdout).expect("list --json is JSON")
+}
+
+/// Every row `choose ARGS --limit 0 --json` ranks, in order.
+fn ranked(args: &[&str]) -> Vec<Value> {
+    let r = ok(&[&["choose"][..], args, &["--limit", "0", "--json"]].concat());
+    serde_json::from_str::<Value>(&r.stdout)
+        .expect("choose --json is JSON")
+        .as_array()
+        .expect("an array")
+        .clone()
+}
+
+fn num(v: &Value, key: &str) -> f64 {
+    v[key].as_f64().unwrap_or_else(|| panic!("{key} of {v}"))
+}
+
+fn alu(e: &Value, f: &str) -> f64 {
+    num(&e["alu"], f)
+}
+
+/// The 99th percentile of the filtering error at 5° apart, lerp and resolve alike
+/// (infinite where the float form may not be filtered).
+fn filter_p99(e: &Value) -> f64 {
+    if !e["not_filterable"].is_null() || e["filtering"].is_null() {
+        return f64::INFINITY;
+    }
+    ["lerp", "resolve"]
+        .iter()
+        .flat_map(|k| e["filtering"][k].as_array().unwrap().iter())
+        .filter(|s| num(s, "separation") == 5.0)
+        .map(|s| num(s, "p99"))
+        .fold(0.0, f64::max)
+}
+
+/// A route as the docs define it: (score, bits, format name, error).
+type Route = (f64, u64, Option<String>, f64);
+
+/// The best route of spec `e` under `use_` within `bits`, by the documented rules.
+fn route(use_: &str, filtered: bool, e: &Value, bits: u64) -> Option<Route> {
+    let max = num(e, "max");
+    let cost = |float_form: bool| -> f64 {
+        let (enc, dec) = if float_form {
+            (alu(e, "encode_float"), alu(e, "decode_float"))
+        } else {
+            (alu(e, "encode"), alu(e, "decode"))
+        };
+        match use_ {
+            "gbuffer" => enc + dec,
+            "asset" => 0.0,
+            _ => dec,
+        }
+    };
+    if use_ == "asset" {
+        let b = e["bits"].as_u64().unwrap();
+        return (b <= bits).then_some((max, b, None, max));
+    }
+    let formats = e["formats"].as_array().unwrap();
+    let block = |f: &Value| {
+        f["channels"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|c| c == "block")
+    };
+    let mut best: Option<Route> = None;
+    for f in formats {
+        let fb = f["bits"].as_u64().unwrap();
+        let float_form = f["holds"] == "float_form";
+        if fb > bits {
+            continue;
+        }
+        let (ok, error) = if filtered {
+            let p = filter_p99(e);
+            (
+                float_form
+                    && f["filterable"] == true
+                    && !f["texture"].is_null()
+                    && p.is_finite()
+                    && !(use_ == "gbuffer" && block(f)),
+                max.max(p),
+            )
+        } else {
+            let kind = if use_ == "vertex" {
+                "vertex"
+            } else {
+                "texture"
+            };
+            (!f[kind].is_null() && f["exact"] == true, max)
+        };
+        if !ok {
+            continue;
+        }
+        let score = error * (1.0 + cost(float_form) / 100.0);
+        let name = f["texture"]
+            .as_str()
+            .or(f["vertex"].as_str())
+            .map(str::to_string);
+        let better = match &best {
+            None => true,
+            Some((s, b, ..)) => score < *s || (score == *s && fb < *b),
+        };
+        if better {
+            best = Some((score, fb, name, error));
+        }
+    }
+    best
+}
+
+/// The use's domain where none is given: a sphere, except normal maps (either).
+fn domain_ok(use_: &str, e: &Value) -> bool {
+    use_ == "normal-map" || e["domain"] == "sphere"
+}
+
+/// Each use at 16, 32 and 64 bits (a G-buffer also unfiltered): the order is the
+/// recomputed score's, every row's score and format are the recomputed route's, and
+/// the format named is one the spec lists, of the kind the use needs, within the bits.
+#[test]
+fn each_use_ranks_by_the_score_recomputed_from_list_json() {
+    let listed = list();
+    let specs = listed["specs"].as_array().unwrap();
+    let mut cases: Vec<(&str, bool)> = USES.iter().map(|u| (*u, false)).collect();
+    cases.push(("gbuffer", true));
+    for (use_, no_filter) in cases {
+        let filtered = !no_filter && matches!(use_, "gbuffer" | "normal-map");
+        for bits in [16u64, 32, 64] {
+            let b = bits.to_string();
+            let mut args = vec!["--use", use_, "--bits", &b];
+            if no_filter {
+                args.push("--no-filter");
+            }
+            let got = ranked(&args);
+            assert!(!got.is_empty(), "{args:?} ranks nothing");
+            let mut want: Vec<(Route, f64, String)> = specs
+                .iter()
+                .filter(|e| domain_ok(use_, e))
+                .filter_map(|e| {
+                    route(use_, filtered, e, bits)
+                        .map(|r| (r, num(e, "mean"), e["spec"].as_str().unwrap().to_string()))
+                })
+                .collect();
+            want.sort_by(|(a, am, an), (b, bm, bn)| {
+                a.0.total_cmp(&b.0)
+                    .then(a.1.cmp(&b.1))
+                    .then(am.total_cmp(bm))
+                    .then(an.cmp(bn))
+            });
+            let got_ids: Vec<&str> = got.iter().map(|r| r["spec"].as_str().unwrap()).collect();
+            let want_ids: Vec<&str> = want.iter().map(|w| w.2.as_str()).collect();
+            assert_eq!(
+                got_ids, want_ids,
+                "{args:?}: the order of the recomputed scores"
+            );
+            for (row, (r, ..)) in got.iter().zip(&want) {
+                let (score, rbits, name, error) = r;
+                let id = &row["spec"];
+                assert!(
+                    (num(row, "score") - score).abs() <= 1e-12 * score.max(1.0),
+                    "{args:?} {id}: score {} against {score}",
+                    row["score"]
+                );
+                assert_eq!(row["stored_bits"].as_u64(), Some(*rbits), "{args:?} {id}");
+                assert!(*rbits <= bits, "{args:?} {id}: {rbits} bits");
+                assert_eq!(row["stored_in"].as_str(), name.as_deref(), "{args:?} {id}");
+                assert_eq!(num(row, "error"), *error, "{args:?} {id}");
+                if filtered {
+                    let p = filter_p99(row);
+                    assert!(p.is_finite() && *error >= p, "{args:?} {id}: filters");
+                }
+            }
+        }
+    }
+}
+
+/// `--use frame` ranks the tangent-frame specs of `list --json`'s `frames` by the
+/// largest sample max of normal, tangent and bitangent × (1 + decode ALU/100), none that
+/// flips a sign, each within the bits; below the smallest frame it says how small that is.
+#[test]
+fn frames_rank_by_their_own_figures() {
+    let listed = list();
+    let frames = listed["frames"].as_array().expect("list --json has frames");
+    assert!(frames.len() >= 6, "{frames:?}");
+    for bits in [32u64, 48, 64] {
+        let b = bits.to_string();
+        let got = ranked(&["--use", "frame", "--bits", &b]);
+        let score = |f: &Value| {
+            let worst = ["normal", "tangent", "bitangent"]
+                .iter()
+                .map(|k| f[k][1].as_f64().unwrap())
+                .fold(0.0, f64::max);
+            (worst * (1.0 + alu(f, "decode") / 100.0), worst)
+        };
+        let mut want: Vec<&Value> = frames
+            .iter()
+            .filter(|f| f["bits"].as_u64().unwrap() <= bits && f["flips"] == 0)
+            .collect();
+        want.sort_by(|a, b| {
+            score(a)
+                .0
+                .total_cmp(&score(b).0)
+                .then(a["bits"].as_u64().cmp(&b["bits"].as_u64()))
+                .then(a["spec"].as_str().cmp(&b["spec"].as_str()))
+        });
+        let ids = |v: &[&Value]| -> Vec<String> {
+            v.iter()
+                .map(|f| f["spec"].as_str().unwrap().to_string())
+                .collect()
+        };
+        assert!(!got.is_empty(), "--use frame --bits {bits}");
+        assert_eq!(
+            ids(&got.iter().collect::<Vec<_>>()),
+            ids(&want),
+            "--bits {bits}"
+        );
+        for (row, f) in got.iter().zip(&want) {
+            assert_eq!(num(row, "score"), score(f).0, "{}", f["spec"]);
+            assert_eq!(num(row, "error"), score(f).1, "{}", f["spec"]);
+        }
+    }
+    let top = ranked(&["--use", "frame", "--bits", "64"]);
+    assert_eq!(top[0]["spec"], "qtangent64");
+    assert!(
+        top[0]["why"]
+            .as_str()
+            .unwrap()
+            .contains("Filament reads these bits")
+    );
+    // `--domain frame` is the same ranking.
+    assert_eq!(ranked(&["--domain", "frame", "--bits", "64"]), top);
+    let e = fails(&["choose", "--use", "frame", "--bits", "16"], "");
+    assert!(e.contains("the smallest has 32 bits"), "{e}");
+}
+
+/// The line under a row names what decided it (its ALU per pixel, its seam where it
+/// filters, its table, its format and bits) and what the next row trades.
+#[test]
+fn the_line_under_a_row_says_what_decided_it() {
+    let g = ranked(&["--use", "gbuffer", "--bits", "32"]);
+    let why = g[0]["why"].as_str().unwrap();
+    for part in [
+        "best by score",
+        "encode_float",
+        "ALU a pixel",
+        "seam: ",
+        "no table",
+        ", 32 bits, filterable",
+        "next, ",
+    ] {
+        assert!(why.contains(part), "{part:?} in {why}");
+    }
+    let a = ranked(&["--use", "asset", "--bits", "16"]);
+    let with_table = a
+        .iter()
+        .find(|r| r["tables"].as_array().is_some_and(|t| !t.is_empty()))
+        .expect("a table codec among the 16-bit assets");
+    let why = with_table["why"].as_str().unwrap();
+    assert!(why.contains("reads table latlongd16_rings ("), "{why}");
+    // The last row trades with nothing.
+    let last = g.last().unwrap()["why"].as_str().unwrap();
+    assert!(!last.contains("next, "), "{last}");
+    // Block formats are written offline: never a G-buffer's render target.
+    for r in &g {
+        let s = r["stored_in"].as_str().unwrap();
+        assert!(!s.starts_with("bc"), "{} in {s}", r["spec"]);
+    }
+}
+
+/// Options that belong to another kind of ranking are refused, naming why.
+#[test]
+fn options_of_another_ranking_are_refused() {
+    let e = fails(&["choose", "--use", "vertex", "--no-filter"], "");
+    assert!(e.contains("--no-filter belongs to --use gbuffer"), "{e}");
+    let e = fails(&["choose", "--use", "asset", "--by", "mean"], "");
+    assert!(e.contains("drop one of them"), "{e}");
+    let e = fails(&["choose", "--use", "vertex", "--domain", "frame"], "");
+    assert!(e.contains("--domain frame ranks tangent frames"), "{e}");
+    // Explicit constraints still apply under a use.
+    let limited = ranked(&["--use", "vertex", "--bits", "32", "--max-decode-alu", "16"]);
+    assert!(!limited.is_empty());
+    for r in &limited {
+        let d = r["route_decode"].as_u64().unwrap();
+        assert!(d <= 16, "{}: decode {d}", r["spec"]);
+    }
+}
