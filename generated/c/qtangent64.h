@@ -416,7 +416,9 @@ static inline unitpack_vec4 unitpack_qtangent64_encode_float_v(unitpack_vec3 n, 
 //   tangent whose orthogonalised squared length is below 2^-60 or not finite (zero, NaN, infinite,
 //   parallel to the normal) is replaced by the canonical tangent of Duff et al. (2017).
 // Out: Filament's packTangentFrame quaternion (x, y, z, w) in [-1, 1], unquantized: w ≥ 1/32767 for
-//   a right-handed frame (t.w ≥ 0), w ≤ -1/32767 for a reflected one.
+//   a right-handed frame (t.w ≥ 0), w ≤ -1/32767 for a reflected one. A t.w of 0 counts as
+//   right-handed, where Filament's SurfaceOrientation (its test is w > 0) builds the reflected
+//   frame: write ±1 where both must agree.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 static inline void unitpack_qtangent64_encode_float(

@@ -35,7 +35,7 @@ use crate::model::{Float, V2, V3};
 /// How `PackFloat2To888` turns `f ∈ [0, 1]` into a 12-bit code.
 pub const ROUNDING: OptDesc = OptDesc {
     key: "rounding",
-    help: "truncate: Unity's uint(f·4095.5); nearest: round(f·4095), the same format and decoder with half the largest scalar error",
+    help: "truncate: Unity's uint(f·4095.5); nearest: round(f·4095) with halves away from zero (not Unity's), the same format and decoder with half the largest scalar error",
     kind: OptKind::Choice(&["truncate", "nearest"]),
 };
 

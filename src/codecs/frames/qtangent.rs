@@ -98,7 +98,7 @@ impl Family for QTangent {
             ],
             "encode_float" => vec![
                 input,
-                "Out: Filament's packTangentFrame quaternion (x, y, z, w) in [-1, 1], unquantized: w ≥ 1/32767 for a right-handed frame (t.w ≥ 0), w ≤ -1/32767 for a reflected one.".into(),
+                "Out: Filament's packTangentFrame quaternion (x, y, z, w) in [-1, 1], unquantized: w ≥ 1/32767 for a right-handed frame (t.w ≥ 0), w ≤ -1/32767 for a reflected one. A t.w of 0 counts as right-handed, where Filament's SurfaceOrientation (its test is w > 0) builds the reflected frame: write ±1 where both must agree.".into(),
             ],
             _ => vec![
                 "In: as for encode_float.".into(),
