@@ -11,7 +11,7 @@
 
 use super::filtering::{self, Filtering};
 use crate::codecs::Spec;
-use crate::codecs::core::storage::{self, Format, Holds};
+use crate::codecs::core::storage::{self, Format};
 use crate::measure::figures::ErrorStats;
 use serde::{Deserialize, Serialize};
 
@@ -122,12 +122,10 @@ impl Entry {
                 .is_some_and(|f| f.deciding_p99() <= deg)
     }
 
-    /// The smallest filterable format the float form is stored in.
+    /// The float form's own format where a texture unit filters it: the one its filtering
+    /// figures are measured in (a block format's are not measured).
     pub fn filterable_storage(&self) -> Option<&Format> {
-        self.formats
-            .iter()
-            .filter(|f| f.holds == Holds::FloatForm && f.filterable)
-            .min_by_key(|f| f.bits)
+        storage::float_form_storage(&self.formats).filter(|f| f.filterable)
     }
 
     /// The figure `--by filter` orders by (infinite when not filterable).

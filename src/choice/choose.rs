@@ -7,7 +7,6 @@
 use super::catalogue::{Catalogue, Entry};
 use super::filtering::DECIDING_SEPARATION;
 use super::query::{Empty, Query};
-use crate::codecs::core::storage::Holds;
 
 /// What the ranking orders by, best first.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
@@ -54,7 +53,7 @@ impl Order {
 
 /// Refuses a `--format` that is no spelling of any format in the catalogue (a typo such as
 /// `rg8snrom` would otherwise read as "no spec meets it"), naming the nearest spellings.
-fn unknown_format(catalogue: &Catalogue, typed: &str) -> Result<(), Empty> {
+pub(super) fn unknown_format(catalogue: &Catalogue, typed: &str) -> Result<(), Empty> {
     let formats = || catalogue.specs.iter().flat_map(|e| &e.formats);
     if formats().any(|x| x.matches(typed)) {
         return Ok(());
@@ -103,11 +102,7 @@ impl Query {
                 c.push((
                     format!("--bits {b}"),
                     format!("a filterable texel of {b} bits"),
-                    Box::new(move |e: &Entry| {
-                        e.formats
-                            .iter()
-                            .any(|f| f.holds == Holds::FloatForm && f.filterable && f.bits == b)
-                    }),
+                    Box::new(move |e: &Entry| e.filterable_storage().is_some_and(|f| f.bits == b)),
                 ));
             } else {
                 c.push((

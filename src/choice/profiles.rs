@@ -12,9 +12,11 @@
 //! ```
 //!
 //! with `cost` the ALU instructions of the functions the profile runs per pixel or per
-//! vertex: a spec twice as accurate may cost about 100 more instructions and tie. `error`
+//! vertex: each 100 instructions add the error once more to the score. `error`
 //! is the round-trip sample max; where the profile filters, the worse of it and the
-//! filtering error's 99th percentile at 5° apart, measured in the route's format.
+//! filtering error's 99th percentile at 5° apart, measured in the float form's own format
+//! (a block format, used only where `--format` names it, is not measured: its figures are
+//! those before compression).
 //! docs/design/choosing.md gives each profile's reasons.
 
 use super::catalogue::{Catalogue, Entry, FrameEntry};
@@ -30,11 +32,14 @@ pub const ALU_WEIGHT: f64 = 100.0;
 pub struct Route<'a> {
     /// The format (`None`: the packed code as bytes, or a frame's words).
     pub format: Option<&'a Format>,
+    /// Whether the float form is stored (so `encode_float` and `decode_float` run).
+    pub float_form: bool,
     /// Bits a texel, vertex or record costs.
     pub bits: u32,
-    /// ALU instructions counted, of the encoder and decoder the route runs.
+    /// ALU instructions of the encoder and decoder the route runs.
     pub encode: u32,
     pub decode: u32,
+    /// The instructions the score counts.
     pub cost: u32,
     /// The filtering error's 99th percentile at the deciding separation, where it filters.
     pub filter: Option<f64>,
@@ -43,118 +48,29 @@ pub struct Route<'a> {
     pub score: f64,
 }
 
+impl Route<'_> {
+    /// The format's name as the use spells it (a vertex format's for a vertex attribute).
+    pub fn stored_in(&self, u: Use) -> Option<&str> {
+        self.format.map(|f| match (u, &f.vertex) {
+            (Use::Vertex, Some(v)) => v.as_str(),
+            _ => f.name(),
+        })
+    }
+}
+
 /// A spec's score under a profile: the module's formula.
 pub fn score(error: f64, cost: u32) -> f64 {
     error * (1.0 + f64::from(cost) / ALU_WEIGHT)
 }
 
-/// The best route of `e` under `u` within `query`'s budget and format, if it has one.
-fn route<'a>(u: Use, e: &'a Entry, query: &Query) -> Option<Route<'a>> {
-    let budget = query.bits.unwrap_or(u32::MAX);
-    let format_ok = |f: &Format| query.format.as_deref().is_none_or(|q| f.matches(q));
-    // Encoder and decoder counted: a G-buffer runs both per pixel; a vertex stream and
-    // a normal map are encoded offline.
-    let counted = |enc: u32, dec: u32| match u {
-        Use::Gbuffer => enc + dec,
-        Use::Vertex | Use::NormalMap | Use::Frame => dec,
-        Use::Asset => 0,
-    };
-    let of = |f: Option<&'a Format>, bits: u32, float_form: bool, filter: Option<f64>| {
-        let (enc, dec) = if float_form {
-            (e.alu.encode_float, e.alu.decode_float)
-        } else {
-            (e.alu.encode, e.alu.decode)
-        };
-        let cost = counted(enc, dec);
-        let error = filter.map_or(e.max, |p| e.max.max(p));
-        Route {
-            format: f,
-            bits,
-            encode: enc,
-            decode: dec,
-            cost,
-            filter,
-            error,
-            score: score(error, cost),
-        }
-    };
-    let best = |routes: Vec<Route<'a>>| {
-        routes
-            .into_iter()
-            .min_by(|a, b| a.score.total_cmp(&b.score).then(a.bits.cmp(&b.bits)))
-    };
-    if u == Use::Asset {
-        return (e.bits <= budget && query.format.is_none()).then(|| of(None, e.bits, false, None));
-    }
-    if u.filters(query) {
-        // The float form in a texture format the texture unit filters.
-        let filter = e.filter_figure();
-        if !filter.is_finite() {
-            return None;
-        }
-        // A G-buffer is a render target: a shader writes it, so no block format.
-        let formats = e.formats.iter().filter(|f| {
-            f.holds == Holds::FloatForm
-                && f.filterable
-                && f.texture.is_some()
-                && (u != Use::Gbuffer || f.renderable())
-                && f.bits <= budget
-                && format_ok(f)
-        });
-        return best(
-            formats
-                .map(|f| of(Some(f), f.bits, true, Some(filter)))
-                .collect(),
-        );
-    }
-    // Read texel by texel or fetched per vertex: any format of the kind that stores the
-    // spec's values exactly, the code's or the float form's.
-    let formats = e.formats.iter().filter(|f| {
-        let kind = match u {
-            Use::Vertex => f.vertex.is_some(),
-            _ => f.texture.is_some(),
-        };
-        kind && f.exact && f.bits <= budget && format_ok(f)
-    });
-    best(
-        formats
-            .map(|f| of(Some(f), f.bits, f.holds == Holds::FloatForm, None))
-            .collect(),
-    )
-}
-
-/// One ranked spec under a profile.
-#[derive(Clone, Debug)]
-pub struct Ranked<'a> {
-    pub entry: &'a Entry,
-    pub route: Route<'a>,
-    pub why: String,
-}
-
-/// One ranked tangent-frame spec.
-#[derive(Clone, Debug)]
-pub struct RankedFrame<'a> {
-    pub entry: &'a FrameEntry,
-    pub error: f64,
-    pub score: f64,
-    pub why: String,
-}
-
-/// A constraint on a spec and its route, as typed.
+/// A constraint on a spec and the route it takes, as typed.
 type Test = (String, Box<dyn Fn(&Entry, &Route) -> bool>);
 
-/// The explicit constraints that still apply under a profile (and the domain it implies
-/// where none is given), in `choose`'s order.
-fn explicit(q: &Query, u: Use) -> Vec<Test> {
+/// The constraints a user gives that apply to each route (the ALU limits to the functions
+/// the route runs, `--portable` to the packed code, the only thing every GPU writes
+/// alike) or to the spec (`--filterable`), in `choose`'s order.
+fn route_tests(q: &Query) -> Vec<Test> {
     let mut c: Vec<Test> = Vec::new();
-    if let Some(d) = q.domain.clone().or(u.domain().map(str::to_string)) {
-        let typed = if q.domain.is_some() {
-            format!("--domain {d}")
-        } else {
-            format!("--use {} (a {d})", u.name())
-        };
-        c.push((typed, Box::new(move |e, _| e.domain == d)));
-    }
     if let Some(deg) = q.filterable {
         c.push((
             format!("--filterable={deg}"),
@@ -174,9 +90,100 @@ fn explicit(q: &Query, u: Use) -> Vec<Test> {
         ));
     }
     if q.portable {
-        c.push(("--portable".into(), Box::new(|e, _| e.portable)));
+        c.push((
+            "--portable".into(),
+            Box::new(|e, r| e.portable && !r.float_form),
+        ));
     }
     c
+}
+
+/// The best route of `e` under `u` within `query`'s budget and format that passes every
+/// one of `tests`, if it has one.
+fn route<'a>(u: Use, e: &'a Entry, query: &Query, tests: &[Test]) -> Option<Route<'a>> {
+    let budget = query.bits.unwrap_or(u32::MAX);
+    let named = |f: &Format| query.format.as_deref().is_none_or(|q| f.matches(q));
+    // Encoder and decoder counted: a G-buffer runs both per pixel; a vertex stream and
+    // a normal map are encoded offline.
+    let counted = |enc: u32, dec: u32| match u {
+        Use::Gbuffer => enc + dec,
+        Use::Vertex | Use::NormalMap | Use::Frame => dec,
+        Use::Asset => 0,
+    };
+    let of = |f: Option<&'a Format>, bits: u32, float_form: bool, filter: Option<f64>| {
+        let (encode, decode) = if float_form {
+            (e.alu.encode_float, e.alu.decode_float)
+        } else {
+            (e.alu.encode, e.alu.decode)
+        };
+        let cost = counted(encode, decode);
+        let error = filter.map_or(e.max, |p| e.max.max(p));
+        Route {
+            format: f,
+            float_form,
+            bits,
+            encode,
+            decode,
+            cost,
+            filter,
+            error,
+            score: score(error, cost),
+        }
+    };
+    let candidates: Vec<Route<'a>> = if u == Use::Asset {
+        vec![of(None, e.bits, false, None)]
+    } else if u.filters(query) {
+        // The float form in the format its filtering is measured in, where a texture unit
+        // filters it; a normal map also in a block format the user names, whose figures
+        // are those before compression (the line under the row says so).
+        let filter = e.filter_figure();
+        let measured = e.filterable_storage().filter(|f| f.texture.is_some());
+        let named_blocks = e
+            .formats
+            .iter()
+            .filter(|f| u == Use::NormalMap && f.block() && query.format.is_some());
+        measured
+            .into_iter()
+            .chain(named_blocks)
+            .filter(|_| filter.is_finite())
+            .map(|f| of(Some(f), f.bits, true, Some(filter)))
+            .collect()
+    } else {
+        // Read texel by texel (a render target, so renderable) or fetched per vertex: any
+        // format of the kind that stores the spec's values exactly, the code's or the
+        // float form's.
+        e.formats
+            .iter()
+            .filter(|f| match u {
+                Use::Vertex => f.vertex.is_some(),
+                _ => f.texture.is_some() && f.renderable(),
+            })
+            .filter(|f| f.exact)
+            .map(|f| of(Some(f), f.bits, f.holds == Holds::FloatForm, None))
+            .collect()
+    };
+    candidates
+        .into_iter()
+        .filter(|r| r.bits <= budget && r.format.is_none_or(&named))
+        .filter(|r| tests.iter().all(|(_, t)| t(e, r)))
+        .min_by(|a, b| a.score.total_cmp(&b.score).then(a.bits.cmp(&b.bits)))
+}
+
+/// One ranked spec under a profile.
+#[derive(Clone, Debug)]
+pub struct Ranked<'a> {
+    pub entry: &'a Entry,
+    pub route: Route<'a>,
+    pub why: String,
+}
+
+/// One ranked tangent-frame spec.
+#[derive(Clone, Debug)]
+pub struct RankedFrame<'a> {
+    pub entry: &'a FrameEntry,
+    pub error: f64,
+    pub score: f64,
+    pub why: String,
 }
 
 /// The storage a profile needs, in words, for the error that finds none.
@@ -189,37 +196,52 @@ fn storage_words(u: Use, q: &Query) -> String {
         .as_ref()
         .map_or(String::new(), |f| format!(" spelled {f}"));
     match (u, u.filters(q)) {
-        (Use::Asset, _) => format!("a code{within}{named}"),
+        (Use::Asset, _) => format!("a code{within}"),
         (_, true) => format!("a filterable texture format{within}{named} holding the float form"),
         (Use::Vertex, _) => format!("a vertex format{within}{named} storing it exactly"),
-        _ => format!("a texture format{within}{named} storing it exactly"),
+        _ => format!("a render-target format{within}{named} storing it exactly"),
     }
 }
 
 /// The specs of `catalogue` ranked for `u`, best first by score (ties: fewer bits,
-/// lower mean, then the id), each with the route it takes and why it is there.
+/// lower mean, then the id), each with the route it takes and why it is there. The
+/// constraints apply in order — the domain (given, or the use's), the storage, then
+/// `--filterable`, the ALU limits and `--portable` on each route — so that an empty
+/// answer names the one that emptied it.
 pub fn rank<'a>(catalogue: &'a Catalogue, query: &Query, u: Use) -> Result<Vec<Ranked<'a>>, Empty> {
-    let mut left: Vec<(&Entry, Route)> = Vec::new();
-    for e in &catalogue.specs {
-        if let Some(r) = route(u, e, query) {
-            left.push((e, r));
-        }
+    if let Some(f) = &query.format {
+        super::choose::unknown_format(catalogue, f)?;
     }
+    let domain = query.domain.clone().or(u.domain().map(str::to_string));
+    let specs: Vec<&Entry> = catalogue
+        .specs
+        .iter()
+        .filter(|e| domain.as_ref().is_none_or(|d| &e.domain == d))
+        .collect();
+    let of_domain = domain.as_ref().map_or("".to_string(), |d| format!("{d} "));
+    let tests = route_tests(query);
+    let routes = |k: usize| -> Vec<(&'a Entry, Route<'a>)> {
+        specs
+            .iter()
+            .filter_map(|e| route(u, e, query, &tests[..k]).map(|r| (*e, r)))
+            .collect()
+    };
+    let mut left = routes(0);
     if left.is_empty() {
         return Err(Empty {
             constraint: format!("--use {}", u.name()),
-            before: format!("no spec has {}", storage_words(u, query)),
+            before: format!("no {of_domain}spec has {}", storage_words(u, query)),
         });
     }
     let mut met = vec![storage_words(u, query)];
-    for (typed, test) in explicit(query, u) {
-        let next: Vec<(&Entry, Route)> = left.iter().filter(|(e, r)| test(e, r)).cloned().collect();
+    for k in 1..=tests.len() {
+        let next = routes(k);
         if next.is_empty() {
             let names: Vec<&str> = left.iter().take(8).map(|(e, _)| e.spec.as_str()).collect();
             return Err(Empty {
-                constraint: typed,
+                constraint: tests[k - 1].0.clone(),
                 before: format!(
-                    "{} specs meet --use {} with {} ({}{})",
+                    "{} {of_domain}specs meet --use {} with {} ({}{})",
                     left.len(),
                     u.name(),
                     met.join(", "),
@@ -228,7 +250,7 @@ pub fn rank<'a>(catalogue: &'a Catalogue, query: &Query, u: Use) -> Result<Vec<R
                 ),
             });
         }
-        met.push(typed);
+        met.push(tests[k - 1].0.clone());
         left = next;
     }
     left.sort_by(|(a, ra), (b, rb)| {
@@ -254,6 +276,17 @@ fn place(i: usize) -> String {
         "best".into()
     } else {
         format!("#{}", i + 1)
+    }
+}
+
+/// What put `a` before `b` where their scores are equal: the sort's next key that differs.
+fn tie_break(a: (&Entry, &Route), b: (&Entry, &Route)) -> &'static str {
+    if a.1.bits != b.1.bits {
+        "fewer bits"
+    } else if a.0.mean != b.0.mean {
+        "the lower mean error"
+    } else {
+        "the id, every figure being equal"
     }
 }
 
@@ -285,8 +318,8 @@ fn why(u: Use, (e, r): &(&Entry, Route), next: Option<&(&Entry, Route)>, i: usiz
         None if u == Use::Asset => "only the error counts".into(),
         None => "error: sample max".into(),
     });
-    let functions = |f: &str| {
-        if r.format.is_some_and(|f| f.holds == Holds::FloatForm) {
+    let function = |f: &str| {
+        if r.float_form {
             format!("{f}_float")
         } else {
             f.to_string()
@@ -295,16 +328,16 @@ fn why(u: Use, (e, r): &(&Entry, Route), next: Option<&(&Entry, Route)>, i: usiz
     match u {
         Use::Gbuffer => parts.push(format!(
             "{} {} and {} {} ALU {per}",
-            functions("encode"),
+            function("encode"),
             r.encode,
-            functions("decode"),
+            function("decode"),
             r.decode
         )),
         Use::Vertex | Use::NormalMap => parts.push(format!(
             "{} {} ALU {per} (encoded offline: {} {})",
-            functions("decode"),
+            function("decode"),
             r.decode,
-            functions("encode"),
+            function("encode"),
             r.encode
         )),
         Use::Asset | Use::Frame => {}
@@ -325,43 +358,59 @@ fn why(u: Use, (e, r): &(&Entry, Route), next: Option<&(&Entry, Route)>, i: usiz
         format!("reads table {}", t.join(", "))
     });
     parts.push(match r.format {
-        Some(f) => format!(
-            "{}, {} bits{}{}",
-            f.name(),
-            f.bits,
-            if r.filter.is_some() {
-                ", filterable"
-            } else {
-                ""
-            },
-            if f.exact {
-                ""
-            } else {
-                " (its channels round the fields: figures before storing)"
+        Some(f) => {
+            let mut s = format!(
+                "{}, {} bits{}",
+                r.stored_in(u).unwrap_or(f.name()),
+                f.bits,
+                if r.filter.is_some() {
+                    ", filterable"
+                } else {
+                    ""
+                }
+            );
+            if f.block() {
+                s.push_str(" (block-compressed: the figures are before compression)");
+            } else if !f.exact {
+                s.push_str(" (its channels round the fields: figures before storing)");
             }
-        ),
+            if u == Use::Gbuffer
+                && let Some(n) = f.render_note()
+            {
+                s.push_str(&format!(" ({n})"));
+            }
+            s
+        }
         None => format!("{} bits as stored", r.bits),
     });
     if let Some(engine) = &e.engine {
-        parts.push(format!("the bits {engine} stores"));
+        parts.push(format!("{engine}'s decoder reads these bits"));
     }
     if let Some((n, nr)) = next {
-        let alu = if u == Use::Asset {
-            String::new()
+        if nr.score == r.score {
+            parts.push(format!(
+                "ties {} on score: first by {}",
+                n.spec,
+                tie_break((e, r), (n, nr))
+            ));
         } else {
-            format!(
-                ", {} ALU ({:+})",
-                nr.cost,
-                i64::from(nr.cost) - i64::from(r.cost)
-            )
-        };
-        parts.push(format!(
-            "next, {}: error {:.4}° ({:+.4}°){alu}, {} bits",
-            n.spec,
-            nr.error,
-            nr.error - r.error,
-            nr.bits
-        ));
+            let alu = if u == Use::Asset {
+                String::new()
+            } else {
+                format!(
+                    ", {} ALU ({:+})",
+                    nr.cost,
+                    i64::from(nr.cost) - i64::from(r.cost)
+                )
+            };
+            parts.push(format!(
+                "next, {}: error {:.4}° ({:+.4}°){alu}, {} bits",
+                n.spec,
+                nr.error,
+                nr.error - r.error,
+                nr.bits
+            ));
+        }
     }
     parts.join("; ")
 }
@@ -373,33 +422,48 @@ pub fn rank_frames<'a>(
     catalogue: &'a Catalogue,
     query: &Query,
 ) -> Result<Vec<RankedFrame<'a>>, Empty> {
-    let budget = query.bits.unwrap_or(u32::MAX);
-    let mut left: Vec<&FrameEntry> = catalogue
-        .frames
-        .iter()
-        .filter(|f| f.flips == 0 && f.bits <= budget)
-        .collect();
-    if let Some(n) = query.max_decode_alu {
-        left.retain(|f| f.alu.decode <= n);
+    type FrameTest = (String, Box<dyn Fn(&FrameEntry) -> bool>);
+    let mut tests: Vec<FrameTest> = vec![("--use frame".into(), Box::new(|f| f.flips == 0))];
+    if let Some(b) = query.bits {
+        tests.push((format!("--bits {b}"), Box::new(move |f| f.bits <= b)));
     }
     if let Some(n) = query.max_encode_alu {
-        left.retain(|f| f.alu.encode <= n);
+        tests.push((
+            format!("--max-encode-alu {n}"),
+            Box::new(move |f| f.alu.encode <= n),
+        ));
     }
-    if left.is_empty() {
-        let smallest = catalogue.frames.iter().map(|f| f.bits).min().unwrap_or(0);
-        return Err(Empty {
-            constraint: "--use frame".into(),
-            before: format!(
-                "no tangent-frame spec keeps every sign within {}{} (the smallest has {smallest} bits)",
-                query
-                    .bits
-                    .map_or("any size".into(), |b| format!("{b} bits")),
-                match (query.max_encode_alu, query.max_decode_alu) {
-                    (None, None) => String::new(),
-                    _ => " and the ALU limits".into(),
-                }
-            ),
-        });
+    if let Some(n) = query.max_decode_alu {
+        tests.push((
+            format!("--max-decode-alu {n}"),
+            Box::new(move |f| f.alu.decode <= n),
+        ));
+    }
+    let mut left: Vec<&FrameEntry> = catalogue.frames.iter().collect();
+    let mut met: Vec<String> = Vec::new();
+    for (typed, test) in &tests {
+        let next: Vec<&FrameEntry> = left.iter().copied().filter(|f| test(f)).collect();
+        if next.is_empty() {
+            let smallest = left.iter().map(|f| f.bits).min().unwrap_or(0);
+            let names: Vec<&str> = left.iter().map(|f| f.spec.as_str()).collect();
+            return Err(Empty {
+                constraint: typed.clone(),
+                before: if typed.starts_with("--bits") {
+                    format!(
+                        "the smallest tangent-frame spec that keeps every sign has {smallest} bits"
+                    )
+                } else {
+                    format!(
+                        "{} frame specs meet {} ({})",
+                        left.len(),
+                        met.join(", "),
+                        names.join(", ")
+                    )
+                },
+            });
+        }
+        met.push(typed.clone());
+        left = next;
     }
     let s = |f: &FrameEntry| score(f.max(), f.alu.decode);
     left.sort_by(|a, b| {
@@ -430,7 +494,14 @@ pub fn rank_frames<'a>(
                 Some(e) => format!("{e} reads these bits"),
                 None => "no engine reads these bits: decode them in your shader".into(),
             });
-            if let Some(n) = left.get(i + 1) {
+            if let Some(n) = left.get(i + 1)
+                && s(n) == s(f)
+            {
+                parts.push(format!("ties {} on score: first by fewer bits or the id", n.spec));
+            }
+            if let Some(n) = left.get(i + 1)
+                && s(n) != s(f)
+            {
                 parts.push(format!(
                     "next, {}: error {:.4}° ({:+.4}°), {} ALU ({:+}), {} bits",
                     n.spec,

@@ -122,13 +122,16 @@ pub struct Query {
         default_missing_value = "1"
     )]
     pub filterable: Option<f64>,
-    /// At most N ALU instructions in the packed encoder.
+    /// At most N ALU instructions in the packed encoder (with --use: in the encoder its
+    /// storage runs).
     #[arg(long, value_name = "N")]
     pub max_encode_alu: Option<u32>,
-    /// At most N ALU instructions in the packed decoder.
+    /// At most N ALU instructions in the packed decoder (with --use: in the decoder its
+    /// storage runs).
     #[arg(long, value_name = "N")]
     pub max_decode_alu: Option<u32>,
-    /// Only packed encoders that give the same code on every conformant GPU.
+    /// Only packed encoders that give the same code on every conformant GPU (with --use:
+    /// only the packed code is stored, never the float form).
     #[arg(long)]
     pub portable: bool,
 }

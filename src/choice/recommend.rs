@@ -125,10 +125,10 @@ pub fn winners(c: &Catalogue) -> Vec<(Case, Option<Winner>)> {
                     r.into_iter().next().map(|ch| Winner {
                         spec: ch.entry.spec.clone(),
                         family: ch.entry.family.clone(),
-                        stored: ch.route.format.map_or_else(
-                            || format!("{} bits", ch.route.bits),
-                            |f| format!("{}, {} bits", f.name(), f.bits),
-                        ),
+                        stored: match ch.route.stored_in(u) {
+                            Some(name) => format!("{name}, {} bits", ch.route.bits),
+                            None => format!("{} bits", ch.route.bits),
+                        },
                         error: ch.route.error,
                         encode: ch.route.encode,
                         decode: ch.route.decode,

@@ -152,6 +152,27 @@ pub fn run(
         ),
         (u, false) => u,
     };
+    if use_case == Some(Use::Frame) {
+        let vector_only = [
+            ("--format", query.format.is_some()),
+            ("--filterable", query.filterable.is_some()),
+            ("--portable", query.portable),
+            (
+                "--domain sphere|hemisphere",
+                query.domain.as_deref().is_some_and(|d| d != "frame"),
+            ),
+        ];
+        if let Some((option, _)) = vector_only.iter().find(|(_, given)| *given) {
+            anyhow::bail!(
+                "{option} constrains vector specs; --use frame ranks tangent frames by bits and ALU only"
+            );
+        }
+    }
+    if use_case == Some(Use::Asset) && query.format.is_some() {
+        anyhow::bail!(
+            "--use asset stores the packed code itself; --format belongs to the uses that store a format (gbuffer, vertex, normal-map)"
+        );
+    }
     if query.no_filter && use_case != Some(Use::Gbuffer) {
         anyhow::bail!(
             "--no-filter belongs to --use gbuffer (the other uses either never filter or always do)"
@@ -228,7 +249,7 @@ fn by_use(
                 score: r.route.score,
                 error: r.route.error,
                 cost: r.route.cost,
-                stored_in: r.route.format.map(|f| f.name()),
+                stored_in: r.route.stored_in(u),
                 stored_bits: r.route.bits,
                 route_encode: r.route.encode,
                 route_decode: r.route.decode,

@@ -6,12 +6,15 @@ use anyhow::{Result, anyhow};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-/// One series of points: its name, colour and `(x, y, label)` points, the label being
-/// what the point's SVG `<title>` names (a spec id).
+/// A chart point: `(x, y, label)`, the label being what its SVG `<title>` names (a spec
+/// id).
+pub type Point = (f64, f64, String);
+
+/// One series of points: its name, colour and points.
 pub struct Series {
     pub name: &'static str,
     pub colour: RGBColor,
-    pub points: Vec<(f64, f64, String)>,
+    pub points: Vec<Point>,
 }
 
 /// The series' colours, by kind.
@@ -36,8 +39,8 @@ fn svg(draw: impl FnOnce(&DrawingArea<SVGBackend, Shift>) -> Result<()>) -> Resu
     Ok(text)
 }
 
-/// The range of `values`, widened by a margin: 5% of the span on a linear axis (fitted to
-/// the data, not to zero), a factor of 1.5 on a logarithmic one.
+/// The range of `values`, widened by a margin: 5% of the span (at least ½) on a linear
+/// axis (fitted to the data, not to zero), a factor of 1.5 on a logarithmic one.
 fn range(values: impl Iterator<Item = f64>, log: bool) -> (f64, f64) {
     let (lo, hi) = values
         .filter(|v| v.is_finite() && (!log || *v > 0.0))
@@ -55,28 +58,36 @@ fn range(values: impl Iterator<Item = f64>, log: bool) -> (f64, f64) {
     }
 }
 
-/// A tick label a reader takes in at once: `0.25`, `1500`, `1e-4` (never
-/// `9.999999999999999e-5`).
-pub fn tick(v: f64) -> String {
+/// A number with `digits` significant digits, trailing zeros dropped, in scientific
+/// notation outside `[1e-3, 1e5)`: `0.25`, `1500`, `1e-4` (never `9.999999999999999e-5`).
+fn significant(v: f64, digits: usize) -> String {
     let a = v.abs();
     if a == 0.0 {
         return "0".into();
     }
+    let trim = |t: String| {
+        if t.contains('.') {
+            t.trim_end_matches('0').trim_end_matches('.').to_string()
+        } else {
+            t
+        }
+    };
     if !(1e-3..1e5).contains(&a) {
-        let t = format!("{v:.0e}");
-        return t;
+        let t = format!("{v:.prec$e}", prec = digits - 1);
+        let (m, e) = t.split_once('e').unwrap_or((&t, "0"));
+        return format!("{}e{e}", trim(m.to_string()));
     }
-    // Three significant digits, trailing zeros dropped.
-    let decimals = (2 - a.log10().floor() as i32).max(0) as usize;
-    let t = format!("{v:.decimals$}");
-    if t.contains('.') {
-        t.trim_end_matches('0').trim_end_matches('.').to_string()
-    } else {
-        t
-    }
+    let decimals = (digits as i32 - 1 - a.log10().floor() as i32).max(0) as usize;
+    trim(format!("{v:.decimals$}"))
 }
 
-/// The points no other point beats on both axes (lower is better on each), by x.
+/// A tick label: three significant digits.
+pub fn tick(v: f64) -> String {
+    significant(v, 3)
+}
+
+/// The points no other point beats on both axes (lower is better on each), by x; of
+/// points at the same place, the first id.
 pub fn pareto(points: &[(f64, f64, String)]) -> Vec<(f64, f64, String)> {
     let mut sorted: Vec<&(f64, f64, String)> = points.iter().collect();
     sorted.sort_by(|a, b| {
@@ -87,9 +98,6 @@ pub fn pareto(points: &[(f64, f64, String)]) -> Vec<(f64, f64, String)> {
     let mut front: Vec<(f64, f64, String)> = Vec::new();
     for p in sorted {
         if front.last().is_none_or(|l| p.1 < l.1) {
-            if front.last().is_some_and(|l| l.0 == p.0) {
-                front.pop();
-            }
             front.push(p.clone());
         }
     }
@@ -98,8 +106,8 @@ pub fn pareto(points: &[(f64, f64, String)]) -> Vec<(f64, f64, String)> {
 
 /// A scatter chart, each axis linear or logarithmic. Every point carries an SVG `<title>`
 /// (plotters draws no per-element title, so the chart's circles, which are the points in
-/// the order drawn, are given theirs afterwards); the Pareto front is drawn as a line and
-/// its points labelled. No legend is drawn over the data: the page says what the colours
+/// the order drawn, are given theirs afterwards); each series' Pareto front is drawn as a
+/// line and its points labelled. No legend is drawn over the data: the page says what the colours
 /// are ([`legend_html`]).
 pub fn scatter(
     title: &str,
@@ -118,7 +126,14 @@ pub fn scatter(
         .collect();
     let (x0, x1) = range(all.iter().map(|p| p.0), log_x);
     let (y0, y1) = range(all.iter().map(|p| p.1), log_y);
-    let front = pareto(&all);
+    // One front per series: a hemisphere codec does not compete with a sphere codec.
+    let fronts: Vec<(RGBColor, Vec<Point>)> = series
+        .iter()
+        .map(|s| {
+            let shown: Vec<Point> = s.points.iter().filter(shown).cloned().collect();
+            (s.colour, pareto(&shown))
+        })
+        .collect();
     let fmt = |v: &f64| tick(*v);
     let text = svg(|root| {
         let mut b = ChartBuilder::on(root);
@@ -150,18 +165,20 @@ pub fn scatter(
                         )
                         .map_err(err)?;
                 }
-                chart
-                    .draw_series(LineSeries::new(
-                        front.iter().map(|p| (p.0, p.1)),
-                        BLACK.mix(0.5),
-                    ))
-                    .map_err(err)?;
-                chart
-                    .draw_series(front.iter().map(|p| {
-                        EmptyElement::at((p.0, p.1))
-                            + Text::new(p.2.clone(), (5, -12), ("sans-serif", 11))
-                    }))
-                    .map_err(err)?;
+                for (c, front) in &fronts {
+                    chart
+                        .draw_series(LineSeries::new(
+                            front.iter().map(|p| (p.0, p.1)),
+                            c.mix(0.6),
+                        ))
+                        .map_err(err)?;
+                    chart
+                        .draw_series(front.iter().map(|p| {
+                            EmptyElement::at((p.0, p.1))
+                                + Text::new(p.2.clone(), (5, -12), ("sans-serif", 11))
+                        }))
+                        .map_err(err)?;
+                }
             }};
         }
         match (log_x, log_y) {
@@ -193,8 +210,8 @@ fn titled(svg: &str, points: &[(f64, f64, String)]) -> Result<String> {
         out.push_str(&format!(
             "><title>{}: {}, {}</title></circle>",
             super::escape(&p.2),
-            tick(p.0),
-            tick(p.1)
+            significant(p.0, 6),
+            significant(p.1, 6)
         ));
         rest = &rest[at + end + 2..];
     }
@@ -214,7 +231,7 @@ pub fn legend_html(series: &[(&str, RGBColor)]) -> String {
             c.0, c.1, c.2
         ));
     }
-    s.push_str("<span>— the Pareto front (nothing is better on both axes), labelled; hover a point for its spec</span></figcaption>");
+    s.push_str("<span>lines: each kind's Pareto front (nothing of its kind is better on both axes), labelled; hover a point for its spec</span></figcaption>");
     s
 }
 

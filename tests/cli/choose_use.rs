@@ -75,6 +75,11 @@ fn route(use_: &str, filtered: bool, e: &Value, bits: u64) -> Option<Route> {
             .iter()
             .any(|c| c == "block")
     };
+    // The float form's own format: the first listed that holds it and is not a block
+    // format, the one its filtering is measured in.
+    let measured = formats
+        .iter()
+        .find(|f| f["holds"] == "float_form" && !block(f));
     let mut best: Option<Route> = None;
     for f in formats {
         let fb = f["bits"].as_u64().unwrap();
@@ -85,29 +90,30 @@ fn route(use_: &str, filtered: bool, e: &Value, bits: u64) -> Option<Route> {
         let (ok, error) = if filtered {
             let p = filter_p99(e);
             (
-                float_form
+                measured == Some(f)
                     && f["filterable"] == true
                     && !f["texture"].is_null()
-                    && p.is_finite()
-                    && !(use_ == "gbuffer" && block(f)),
+                    && p.is_finite(),
                 max.max(p),
             )
+        } else if use_ == "vertex" {
+            (!f["vertex"].is_null() && f["exact"] == true, max)
         } else {
-            let kind = if use_ == "vertex" {
-                "vertex"
-            } else {
-                "texture"
-            };
-            (!f[kind].is_null() && f["exact"] == true, max)
+            (
+                !f["texture"].is_null() && f["exact"] == true && !block(f),
+                max,
+            )
         };
         if !ok {
             continue;
         }
         let score = error * (1.0 + cost(float_form) / 100.0);
-        let name = f["texture"]
-            .as_str()
-            .or(f["vertex"].as_str())
-            .map(str::to_string);
+        let name = if use_ == "vertex" {
+            f["vertex"].as_str()
+        } else {
+            f["texture"].as_str()
+        }
+        .map(str::to_string);
         let better = match &best {
             None => true,
             Some((s, b, ..)) => score < *s || (score == *s && fb < *b),
@@ -240,7 +246,7 @@ fn frames_rank_by_their_own_figures() {
     // `--domain frame` is the same ranking.
     assert_eq!(ranked(&["--domain", "frame", "--bits", "64"]), top);
     let e = fails(&["choose", "--use", "frame", "--bits", "16"], "");
-    assert!(e.contains("the smallest has 32 bits"), "{e}");
+    assert!(e.contains("spec that keeps every sign has 32 bits"), "{e}");
 }
 
 /// The line under a row names what decided it (its ALU per pixel, its seam where it
@@ -293,4 +299,77 @@ fn options_of_another_ranking_are_refused() {
         let d = r["route_decode"].as_u64().unwrap();
         assert!(d <= 16, "{}: decode {d}", r["spec"]);
     }
+}
+
+/// Constraints given with a use apply to the route it takes: an ALU limit keeps a spec
+/// whose other route is within it, `--portable` keeps only the packed code (the one thing
+/// every GPU writes alike), a block format is used only where named (its figures are
+/// before compression, and the line says so), and a typo in `--format` is named.
+#[test]
+fn constraints_apply_to_the_route() {
+    let limited = ranked(&[
+        "--use",
+        "gbuffer",
+        "--no-filter",
+        "--bits",
+        "32",
+        "--max-encode-alu",
+        "360",
+    ]);
+    let ld = limited
+        .iter()
+        .find(|r| r["spec"] == "latlongd32")
+        .expect("latlongd32's code route encodes in 358");
+    assert!(ld["route_encode"].as_u64().unwrap() <= 360, "{ld}");
+    for r in &limited {
+        assert!(r["route_encode"].as_u64().unwrap() <= 360, "{}", r["spec"]);
+    }
+    let e = fails(&["choose", "--use", "gbuffer", "--portable"], "");
+    assert!(e.contains("no spec meets --portable"), "{e}");
+    for r in ranked(&["--use", "gbuffer", "--no-filter", "--portable"]) {
+        let stored = r["stored_in"].as_str().unwrap();
+        assert!(stored.contains("uint"), "{}: {stored}", r["spec"]);
+    }
+    for r in ranked(&["--use", "normal-map", "--bits", "16"]) {
+        let stored = r["stored_in"].as_str().unwrap();
+        assert!(!stored.starts_with("bc"), "{}: {stored}", r["spec"]);
+    }
+    let bc5 = ranked(&["--use", "normal-map", "--format", "bc5-rg-unorm"]);
+    assert!(!bc5.is_empty());
+    for r in &bc5 {
+        assert_eq!(r["stored_in"], "bc5-rg-unorm");
+        let why = r["why"].as_str().unwrap();
+        assert!(
+            why.contains("block-compressed: the figures are before compression"),
+            "{why}"
+        );
+    }
+    let e = fails(&["choose", "--use", "vertex", "--format", "snorm16x3"], "");
+    assert!(e.contains("did you mean"), "{e}");
+    // A vertex attribute is named by its vertex format.
+    let v = ranked(&["--use", "vertex", "--bits", "16"]);
+    assert_eq!(v[0]["stored_in"], "snorm8x2", "{}", v[0]);
+}
+
+/// Options a use does not take are refused, naming why; a frame ranking that the bits
+/// empty says how small the smallest frame is, and one the ALU limits empty names them.
+#[test]
+fn options_a_use_does_not_take_are_refused() {
+    for opt in [
+        &["--format", "rg8snorm"][..],
+        &["--filterable"],
+        &["--portable"],
+        &["--domain", "sphere"],
+    ] {
+        let e = fails(&[&["choose", "--use", "frame"][..], opt].concat(), "");
+        assert!(
+            e.contains("--use frame ranks tangent frames"),
+            "{opt:?}: {e}"
+        );
+    }
+    let e = fails(&["choose", "--use", "asset", "--format", "rg8snorm"], "");
+    assert!(e.contains("stores the packed code itself"), "{e}");
+    let e = fails(&["choose", "--use", "frame", "--max-decode-alu", "10"], "");
+    assert!(e.contains("no spec meets --max-decode-alu 10"), "{e}");
+    assert!(!e.contains("smallest"), "{e}");
 }

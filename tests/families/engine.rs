@@ -351,3 +351,15 @@ fn draco_matches_draco() {
         }
     }
 }
+
+/// Where draco_oct parts from Draco, as docs/codecs.md says: on an exact tie Draco's f64
+/// arithmetic decides (17/254·127 is 8.499999999999998 in f64, so Draco floors to 8) and
+/// unitpack returns the exact answer (9). If either side changes, the docs are stale.
+#[test]
+fn draco_oct_parts_from_draco_on_the_documented_tie() {
+    let v = [17.0f32, 0.0, 237.0];
+    let unitpack = run(&function("draco_oct8", Role::Encode), &bits(v))[0];
+    assert_eq!(unitpack, 0xf57f, "{unitpack:#x}");
+    let [s, t] = draco::encode(v, 8);
+    assert_eq!(s as u32 | (t as u32) << 8, 0xf67f, "Draco's ({s}, {t})");
+}

@@ -246,7 +246,24 @@ impl Format {
     /// Whether a render target can be of it (a shader writes it): every format but the
     /// block-compressed ones, which only an offline compressor writes.
     pub fn renderable(&self) -> bool {
-        !self.channels.contains(&Channel::Block)
+        !self.block()
+    }
+
+    /// Whether it is block-compressed (lossy: what it stores is not what was written).
+    pub fn block(&self) -> bool {
+        self.channels.contains(&Channel::Block)
+    }
+
+    /// Where a render target of it is not in every API's core: snorm colour attachments
+    /// (D3D and desktop GL have them; Vulkan does not require them).
+    pub fn render_note(&self) -> Option<&'static str> {
+        self.channels
+            .iter()
+            .any(|c| matches!(c, Channel::Snorm(_)))
+            .then_some(
+                "a snorm render target needs WebGPU's texture-formats-tier1, OpenGL ES's \
+                 EXT_render_snorm, and a Vulkan device that lists it as a colour attachment",
+            )
     }
 
     /// `rg8snorm (16 bits)`, as `list`, `choose` and the report print it.
