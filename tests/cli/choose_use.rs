@@ -45,18 +45,22 @@ fn filter_p99(e: &Value) -> f64 {
         .fold(0.0, f64::max)
 }
 
-/// A route as the docs define it: (score, bits, format name, error).
-type Route = (f64, u64, Option<String>, f64);
+/// A route as the docs define it: (score, bits, format name, error, the instructions of
+/// the encoder and decoder it runs).
+type Route = (f64, u64, Option<String>, f64, [f64; 2]);
 
 /// The best route of spec `e` under `use_` within `bits`, by the documented rules.
 fn route(use_: &str, filtered: bool, e: &Value, bits: u64) -> Option<Route> {
     let max = num(e, "max");
-    let cost = |float_form: bool| -> f64 {
-        let (enc, dec) = if float_form {
-            (alu(e, "encode_float"), alu(e, "decode_float"))
+    let functions = |float_form: bool| -> [f64; 2] {
+        if float_form {
+            [alu(e, "encode_float"), alu(e, "decode_float")]
         } else {
-            (alu(e, "encode"), alu(e, "decode"))
-        };
+            [alu(e, "encode"), alu(e, "decode")]
+        }
+    };
+    let cost = |float_form: bool| -> f64 {
+        let [enc, dec] = functions(float_form);
         match use_ {
             "gbuffer" => enc + dec,
             "asset" => 0.0,
@@ -65,7 +69,7 @@ fn route(use_: &str, filtered: bool, e: &Value, bits: u64) -> Option<Route> {
     };
     if use_ == "asset" {
         let b = e["bits"].as_u64().unwrap();
-        return (b <= bits).then_some((max, b, None, max));
+        return (b <= bits).then_some((max, b, None, max, functions(false)));
     }
     let formats = e["formats"].as_array().unwrap();
     let block = |f: &Value| {
@@ -119,7 +123,7 @@ fn route(use_: &str, filtered: bool, e: &Value, bits: u64) -> Option<Route> {
             Some((s, b, ..)) => score < *s || (score == *s && fb < *b),
         };
         if better {
-            best = Some((score, fb, name, error));
+            best = Some((score, fb, name, error, functions(float_form)));
         }
     }
     best
@@ -170,7 +174,15 @@ fn each_use_ranks_by_the_score_recomputed_from_list_json() {
                 "{args:?}: the order of the recomputed scores"
             );
             for (row, (r, ..)) in got.iter().zip(&want) {
-                let (score, rbits, name, error) = r;
+                let (score, rbits, name, error, [enc, dec]) = r;
+                assert_eq!(num(row, "route_encode"), *enc, "{args:?} {}", row["spec"]);
+                assert_eq!(num(row, "route_decode"), *dec, "{args:?} {}", row["spec"]);
+                let cost = match use_ {
+                    "gbuffer" => enc + dec,
+                    "asset" => 0.0,
+                    _ => *dec,
+                };
+                assert_eq!(num(row, "cost"), cost, "{args:?} {}", row["spec"]);
                 let id = &row["spec"];
                 assert!(
                     (num(row, "score") - score).abs() <= 1e-12 * score.max(1.0),
