@@ -279,6 +279,26 @@ fn place(i: usize) -> String {
     }
 }
 
+/// `best by score 0.4847 = 0.3847° × (1 + 26/100)`: a row's score, spelt out.
+fn scored(i: usize, error: f64, cost: u32) -> String {
+    format!(
+        "{} by score {:.4} = {error:.4}° × (1 + {cost}/{ALU_WEIGHT})",
+        place(i),
+        score(error, cost)
+    )
+}
+
+/// What the next row trades: its error and bits, and its instructions where they count.
+fn next_trade(
+    spec: &str,
+    (error, bits): (f64, u32),
+    d_error: f64,
+    alu: Option<(u32, i64)>,
+) -> String {
+    let alu = alu.map_or(String::new(), |(n, d)| format!(", {n} ALU ({d:+})"));
+    format!("next, {spec}: error {error:.4}° ({d_error:+.4}°){alu}, {bits} bits")
+}
+
 /// What put `a` before `b` where their scores are equal: the sort's next key that differs.
 fn tie_break(a: (&Entry, &Route), b: (&Entry, &Route)) -> &'static str {
     if a.1.bits != b.1.bits {
@@ -299,13 +319,7 @@ fn why(u: Use, (e, r): &(&Entry, Route), next: Option<&(&Entry, Route)>, i: usiz
     let mut parts = vec![if u == Use::Asset {
         format!("{} by sample max {:.4}°", place(i), r.error)
     } else {
-        format!(
-            "{} by score {:.4} = {:.4}° × (1 + {}/{ALU_WEIGHT})",
-            place(i),
-            r.score,
-            r.error,
-            r.cost
-        )
+        scored(i, r.error, r.cost)
     }];
     parts.push(match r.filter {
         Some(p) if p > e.max => format!(
@@ -394,21 +408,12 @@ fn why(u: Use, (e, r): &(&Entry, Route), next: Option<&(&Entry, Route)>, i: usiz
                 tie_break((e, r), (n, nr))
             ));
         } else {
-            let alu = if u == Use::Asset {
-                String::new()
-            } else {
-                format!(
-                    ", {} ALU ({:+})",
-                    nr.cost,
-                    i64::from(nr.cost) - i64::from(r.cost)
-                )
-            };
-            parts.push(format!(
-                "next, {}: error {:.4}° ({:+.4}°){alu}, {} bits",
-                n.spec,
-                nr.error,
+            let alu = (u != Use::Asset).then(|| (nr.cost, i64::from(nr.cost) - i64::from(r.cost)));
+            parts.push(next_trade(
+                &n.spec,
+                (nr.error, nr.bits),
                 nr.error - r.error,
-                nr.bits
+                alu,
             ));
         }
     }
@@ -475,13 +480,7 @@ pub fn rank_frames<'a>(
         .iter()
         .enumerate()
         .map(|(i, f)| {
-            let mut parts = vec![format!(
-                "{} by score {:.4} = {:.4}° × (1 + {}/{ALU_WEIGHT})",
-                place(i),
-                s(f),
-                f.max(),
-                f.alu.decode
-            )];
+            let mut parts = vec![scored(i, f.max(), f.alu.decode)];
             parts.push(format!(
                 "error: the largest sample max of normal {:.4}°, tangent {:.4}°, bitangent {:.4}°; no handedness flip",
                 f.normal[1], f.tangent[1], f.bitangent[1]
@@ -502,14 +501,12 @@ pub fn rank_frames<'a>(
             if let Some(n) = left.get(i + 1)
                 && s(n) != s(f)
             {
-                parts.push(format!(
-                    "next, {}: error {:.4}° ({:+.4}°), {} ALU ({:+}), {} bits",
-                    n.spec,
-                    n.max(),
+                let d = i64::from(n.alu.decode) - i64::from(f.alu.decode);
+                parts.push(next_trade(
+                    &n.spec,
+                    (n.max(), n.bits),
                     n.max() - f.max(),
-                    n.alu.decode,
-                    i64::from(n.alu.decode) - i64::from(f.alu.decode),
-                    n.bits
+                    Some((n.alu.decode, d)),
                 ));
             }
             RankedFrame {
