@@ -55,15 +55,21 @@ typedef struct { bool x, y, z, w; } unitpack_bvec4;
 
 // Struct form of unitpack_meshopt_oct16_decode_float.
 static inline unitpack_vec3 unitpack_meshopt_oct16_decode_float_v(unitpack_vec4 params) {
-    const float t1 = fabsf(nearbyintf(params.z * 32767.0f));
-    const float one = t1 >= 1.0f ? t1 : 1.0f;
-    const float t2 = nearbyintf(params.x * 32767.0f) / one;
-    const float t3 = nearbyintf(params.y * 32767.0f) / one;
+    const unitpack_vec4 t1 = {
+        nearbyintf(params.x * 32767.0f),
+        nearbyintf(params.y * 32767.0f),
+        nearbyintf(params.z * 32767.0f),
+        nearbyintf(params.w * 32767.0f)
+    };
+    const float abs_t1_z = fabsf(t1.z);
+    const float one = abs_t1_z >= 1.0f ? abs_t1_z : 1.0f;
+    const float t2 = t1.x / one;
+    const float t3 = t1.y / one;
     const float t4 = 1.0f - fabsf(t2);
     const float abs_t3 = fabsf(t3);
     const float t5 = t4 - abs_t3;
     const float t = t5 < 0.0f ? t5 : 0.0f;
-    const unitpack_vec3 t6 = { t2 >= 0.0f ? -t : t, t3 >= 0.0f ? -t : t, abs_t3 };
+    const unitpack_vec3 t6 = { t1.x >= 0.0f ? -t : t, t1.y >= 0.0f ? -t : t, abs_t3 };
     const unitpack_vec3 v = { t2 - t6.x, t3 - t6.y, t4 - t6.z };
     const unitpack_vec3 v_sq = { v.x * v.x, v.y * v.y, v.z * v.z };
     const float t7 = sqrtf(v_sq.x + v_sq.y + v_sq.z);
@@ -118,15 +124,21 @@ static inline unitpack_vec3 unitpack_meshopt_oct16_decode_v(unitpack_uvec2 code)
         (float)(code.y & 0xffffu),
         (float)(code.y >> 16u)
     };
-    const float t2 = fabsf(t1.z > 32767.0f ? t1.z - 65536.0f : t1.z);
-    const float one = t2 >= 1.0f ? t2 : 1.0f;
-    const float t3 = (t1.x > 32767.0f ? t1.x - 65536.0f : t1.x) / one;
-    const float t4 = (t1.y > 32767.0f ? t1.y - 65536.0f : t1.y) / one;
+    const unitpack_vec4 t2 = {
+        t1.x > 32767.0f ? t1.x - 65536.0f : t1.x,
+        t1.y > 32767.0f ? t1.y - 65536.0f : t1.y,
+        t1.z > 32767.0f ? t1.z - 65536.0f : t1.z,
+        t1.w > 32767.0f ? t1.w - 65536.0f : t1.w
+    };
+    const float abs_t2_z = fabsf(t2.z);
+    const float one = abs_t2_z >= 1.0f ? abs_t2_z : 1.0f;
+    const float t3 = t2.x / one;
+    const float t4 = t2.y / one;
     const float t5 = 1.0f - fabsf(t3);
     const float abs_t4 = fabsf(t4);
     const float t6 = t5 - abs_t4;
     const float t = t6 < 0.0f ? t6 : 0.0f;
-    const unitpack_vec3 t7 = { t3 >= 0.0f ? -t : t, t4 >= 0.0f ? -t : t, abs_t4 };
+    const unitpack_vec3 t7 = { t2.x >= 0.0f ? -t : t, t2.y >= 0.0f ? -t : t, abs_t4 };
     const unitpack_vec3 v = { t3 - t7.x, t4 - t7.y, t5 - t7.z };
     const unitpack_vec3 v_sq = { v.x * v.x, v.y * v.y, v.z * v.z };
     const float t8 = sqrtf(v_sq.x + v_sq.y + v_sq.z);
@@ -161,7 +173,10 @@ static inline unitpack_vec3 unitpack_meshopt_oct16_decode_v(unitpack_uvec2 code)
 //   complement), word 1 bits 0–15: p2 snorm16 (two's complement), word 1 bits 16–31: p3 snorm16
 //   (two's complement)); other bits are ignored.
 // Out: as for unitpack_meshopt_oct16_decode_float.
-// Portable as unitpack_meshopt_oct16_decode_float is, within the same bound.
+// Portable within a bound (as the header says): each output component is within 27649·2^-24
+//   (1.65e-3) of what this function computes here, for every valid code: a bound proven by interval
+//   evaluation (unitpack verify --portable prints it). Not shown tight: the search spent its budget
+//   with one code at 1027·2^-24.
 static inline void unitpack_meshopt_oct16_decode(uint64_t code, float out[3]) {
     const unitpack_uvec2 code_w = { (uint32_t)code, (uint32_t)(code >> 32) };
     const unitpack_vec3 r = unitpack_meshopt_oct16_decode_v(code_w);

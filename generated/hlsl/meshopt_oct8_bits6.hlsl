@@ -41,8 +41,8 @@
 // Out: the extension's reference decoder, read as the snorm vertex fetch reads its output words: a
 //   unit vector to the output's rounding; a third word below 1 (invalid, unspecified by the
 //   extension) is read as its magnitude, at least 1.
-// Portable within a bound (as the header says): each output component is within 175698412·2^-24
-//   (1.05e1) of what this function computes here, for every valid code: a bound proven by interval
+// Portable within a bound (as the header says): each output component is within 264213·2^-24
+//   (1.57e-2) of what this function computes here, for every valid code: a bound proven by interval
 //   evaluation (unitpack verify --portable prints it).
 float3 unitpack_meshopt_oct8_bits6_decode_float(float4 params) {
     precise float4 t1 = round(params * 127.0);
@@ -57,7 +57,7 @@ float3 unitpack_meshopt_oct8_bits6_decode_float(float4 params) {
     precise float neg_t = -t;
     precise float neg_t2 = -t;
     precise float3 v = float3(t2, t3, t4)
-        - float3(t2 >= 0.0 ? neg_t : t, t3 >= 0.0 ? neg_t2 : t, abs_t3);
+        - float3(t1.x >= 0.0 ? neg_t : t, t1.y >= 0.0 ? neg_t2 : t, abs_t3);
     precise float3 v_sq = v * v;
     precise float3 t6 = v / sqrt(v_sq.x + v_sq.y + v_sq.z) * 127.0;
     precise float3 abs_t6 = abs(t6);
@@ -79,9 +79,7 @@ float3 unitpack_meshopt_oct8_bits6_decode_float(float4 params) {
 //   complement), bits 16–23: p2 snorm8 (two's complement), bits 24–31: p3 snorm8 (two's
 //   complement)); other bits are ignored.
 // Out: as for unitpack_meshopt_oct8_bits6_decode_float.
-// Portable within a bound (as the header says): each output component is within 177547869·2^-24
-//   (1.06e1) of what this function computes here, for every valid code: a bound proven by interval
-//   evaluation (unitpack verify --portable prints it).
+// Portable as unitpack_meshopt_oct8_bits6_decode_float is, within the same bound.
 float3 unitpack_meshopt_oct8_bits6_decode(uint code) {
     uint4 t1 = uint4(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u);
     precise float4 t1_f = float4(t1);
@@ -101,7 +99,7 @@ float3 unitpack_meshopt_oct8_bits6_decode(uint code) {
     precise float neg_t = -t;
     precise float neg_t2 = -t;
     precise float3 v = float3(t3, t4, t5)
-        - float3(t3 >= 0.0 ? neg_t : t, t4 >= 0.0 ? neg_t2 : t, abs_t4);
+        - float3(t2.x >= 0.0 ? neg_t : t, t2.y >= 0.0 ? neg_t2 : t, abs_t4);
     precise float3 v_sq = v * v;
     precise float3 t7 = v / sqrt(v_sq.x + v_sq.y + v_sq.z) * 127.0;
     precise float3 abs_t7 = abs(t7);

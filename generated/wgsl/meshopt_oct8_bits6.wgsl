@@ -25,8 +25,8 @@
 // Out: the extension's reference decoder, read as the snorm vertex fetch reads its output words: a
 //   unit vector to the output's rounding; a third word below 1 (invalid, unspecified by the
 //   extension) is read as its magnitude, at least 1.
-// Portable within a bound (as the header says): each output component is within 175698412·2^-24
-//   (1.05e1) of what this function computes here, for every valid code: a bound proven by interval
+// Portable within a bound (as the header says): each output component is within 264213·2^-24
+//   (1.57e-2) of what this function computes here, for every valid code: a bound proven by interval
 //   evaluation (unitpack verify --portable prints it).
 fn unitpack_meshopt_oct8_bits6_decode_float(params: vec4<f32>) -> vec3<f32> {
     let t1 = round(params * 127.0f);
@@ -38,7 +38,7 @@ fn unitpack_meshopt_oct8_bits6_decode_float(params: vec4<f32>) -> vec3<f32> {
     let abs_t3 = abs(t3);
     let t5 = t4 - abs_t3;
     let t = select(0.0f, t5, 0.0f > t5);
-    let t6 = vec3<f32>(select(t, -t, t2 >= 0.0f), select(t, -t, t3 >= 0.0f), abs_t3);
+    let t6 = vec3<f32>(select(t, -t, t1.x >= 0.0f), select(t, -t, t1.y >= 0.0f), abs_t3);
     let v = vec3<f32>(t2, t3, t4) - t6;
     let v_sq = v * v;
     let t7 = v / sqrt(v_sq.x + v_sq.y + v_sq.z) * 127.0f;
@@ -56,9 +56,7 @@ fn unitpack_meshopt_oct8_bits6_decode_float(params: vec4<f32>) -> vec3<f32> {
 //   complement), bits 16–23: p2 snorm8 (two's complement), bits 24–31: p3 snorm8 (two's
 //   complement)); other bits are ignored.
 // Out: as for unitpack_meshopt_oct8_bits6_decode_float.
-// Portable within a bound (as the header says): each output component is within 177547869·2^-24
-//   (1.06e1) of what this function computes here, for every valid code: a bound proven by interval
-//   evaluation (unitpack verify --portable prints it).
+// Portable as unitpack_meshopt_oct8_bits6_decode_float is, within the same bound.
 fn unitpack_meshopt_oct8_bits6_decode(code: u32) -> vec3<f32> {
     let t1 = vec4<u32>(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u);
     let t1_f = vec4<f32>(t1);
@@ -71,7 +69,7 @@ fn unitpack_meshopt_oct8_bits6_decode(code: u32) -> vec3<f32> {
     let abs_t4 = abs(t4);
     let t6 = t5 - abs_t4;
     let t = select(0.0f, t6, 0.0f > t6);
-    let t7 = vec3<f32>(select(t, -t, t3 >= 0.0f), select(t, -t, t4 >= 0.0f), abs_t4);
+    let t7 = vec3<f32>(select(t, -t, t2.x >= 0.0f), select(t, -t, t2.y >= 0.0f), abs_t4);
     let v = vec3<f32>(t3, t4, t5) - t7;
     let v_sq = v * v;
     let t8 = v / sqrt(v_sq.x + v_sq.y + v_sq.z) * 127.0f;

@@ -24,8 +24,14 @@ pub fn header() -> String {
     )
 }
 
-/// One row under [`header`].
+/// One row under [`header`], with the packed functions' ALU counts.
 pub fn row(e: &Entry) -> String {
+    row_counting(e, e.alu.encode, e.alu.decode)
+}
+
+/// One row under [`header`], with the ALU counts `enc` and `dec` in its columns: under
+/// `--use` those of the functions its route runs, which its score counts.
+fn row_counting(e: &Entry, enc: u32, dec: u32) -> String {
     let formats: Vec<String> = e
         .formats
         .iter()
@@ -43,8 +49,8 @@ pub fn row(e: &Entry) -> String {
         e.domain,
         fig(Some(e.mean), 5),
         fig(Some(e.max), 5),
-        e.alu.encode,
-        e.alu.decode,
+        enc,
+        dec,
         if e.portable { "yes" } else { "no" },
         fig(e.bounds.decode, 1),
         filter,
@@ -54,9 +60,14 @@ pub fn row(e: &Entry) -> String {
 
 /// What the columns mean, under every table.
 pub fn legend(c: &Catalogue) -> String {
+    legend_counting(c, "the packed encoder and decoder")
+}
+
+/// [`legend`], saying whose ALU instructions the enc and dec columns count.
+fn legend_counting(c: &Catalogue, counted: &str) -> String {
     format!(
         "mean°, max°: round-trip error over {} seeded vectors (max: the sample's largest, \
-         not a bound). enc, dec: ALU instructions of the packed encoder and decoder. \
+         not a bound). enc, dec: ALU instructions of {counted}. \
          bound: proven decode bound in units of 2^-24. filter°: 99th percentile of the \
          filtering error at {DECIDING_SEPARATION}° apart, as the float form's format stores \
          it (no: not filterable). formats: WebGPU names / bits a texel or vertex \
@@ -265,9 +276,12 @@ fn by_use(
         header()
     );
     for r in &ranked[..n] {
-        s.push_str(&format!("{}\n  {}\n", row(r.entry), r.why));
+        let line = row_counting(r.entry, r.route.encode, r.route.decode);
+        s.push_str(&format!("{line}\n  {}\n", r.why));
     }
-    Ok(format!("{s}{more}\n{}", legend(c)))
+    let counted = "the encoder and decoder this use runs (the float form's where a \
+                   format stores it; the line above the table says which the score counts)";
+    Ok(format!("{s}{more}\n{}", legend_counting(c, counted)))
 }
 
 /// `choose --use frame`.

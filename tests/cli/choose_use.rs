@@ -295,6 +295,41 @@ fn the_line_under_a_row_says_what_decided_it() {
     }
 }
 
+/// Under `--use` the table's enc and dec columns are the counts of the route the score
+/// counts (a G-buffer's float-form encoder, not the packed one), as the JSON has them,
+/// and the legend says so.
+#[test]
+fn the_table_counts_the_route_it_ranks() {
+    let args = ["choose", "--use", "gbuffer", "--bits", "32", "--limit", "0"];
+    let table = ok(&args).stdout;
+    let rows = ranked(&args[1..5]);
+    let mut differ = 0;
+    for r in &rows {
+        let spec = r["spec"].as_str().unwrap();
+        let line = table
+            .lines()
+            .find(|l| l.split_whitespace().next() == Some(spec))
+            .unwrap_or_else(|| panic!("{spec} in the table:\n{table}"));
+        // spec, bits, domain, mean°, max°, enc, dec, …
+        let cols: Vec<&str> = line.split_whitespace().collect();
+        let (enc, dec) = (
+            r["route_encode"].as_u64().unwrap(),
+            r["route_decode"].as_u64().unwrap(),
+        );
+        assert_eq!(cols[5], enc.to_string(), "{spec} enc in {line}");
+        assert_eq!(cols[6], dec.to_string(), "{spec} dec in {line}");
+        differ += usize::from(r["alu"]["encode"].as_u64() != Some(enc));
+    }
+    assert!(
+        differ > 0,
+        "some route runs other functions than the packed ones"
+    );
+    assert!(
+        table.contains("enc, dec: ALU instructions of the encoder and decoder this use runs"),
+        "{table}"
+    );
+}
+
 /// Options that belong to another kind of ranking are refused, naming why.
 #[test]
 fn options_of_another_ranking_are_refused() {

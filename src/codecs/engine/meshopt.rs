@@ -166,12 +166,17 @@ fn reference_decode<F: Float>(out: Quant, c: V4<F>) -> V3<F> {
     let y = c.y / one;
     let z = F::c(1.0) - x.abs() - y.abs();
     let t = F::sel(z.lt(zero), z, zero).named("t");
-    // x -= copysign(t, x), t ≤ 0: toward zero by |t|.
+    // x -= copysign(t, x), t ≤ 0: toward zero by |t|. The sign is read from the integer
+    // word, which the quotient shares (`one ≥ 1`; a zero word gives +0, as `x ≥ 0` reads
+    // it): the same selection on every code, and one no implementation can change, while
+    // `0/one` may come out as a denormal of either sign within division's 2.5 ULP. On a
+    // code no encoder writes (`|x| + |y|` above the third word, with a zero coordinate)
+    // that sign would flip an output component: the proven bound was 51 instead of 2^-20.
     let fix = {
         #[inline(always)]
-        |a: F| a - F::sel(a.ge(zero), -t, t)
+        |a: F, word: F| a - F::sel(word.ge(zero), -t, t)
     };
-    let v = V3::new(fix(x), fix(y), z).named("v");
+    let v = V3::new(fix(x, c.x), fix(y, c.y), z).named("v");
     let len = v.length_squared().sqrt();
     let m = F::c(out.max_code());
     (v / len).map(
