@@ -279,8 +279,9 @@ fn by_use(
         let line = row_counting(r.entry, r.route.encode, r.route.decode);
         s.push_str(&format!("{line}\n  {}\n", r.why));
     }
-    let counted = "the encoder and decoder this use runs (the float form's where a \
-                   format stores it; the line above the table says which the score counts)";
+    let counted = "the encoder and decoder this use runs (the float form's where the \
+                   route's format holds the float form; the line above the table says which \
+                   the score counts)";
     Ok(format!("{s}{more}\n{}", legend_counting(c, counted)))
 }
 

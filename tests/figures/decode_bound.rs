@@ -198,13 +198,15 @@ fn a_proof_that_runs_out_of_budget_says_so() {
             "boxes of hostile codes (x or y beyond the third word), where the fold's \
              cancellation meets the normalizing division: the budget ends with the widest box \
              at 27 times what the best code reaches (two steps of the 16-bit output word), \
-             under 0.002",
+             under 0.002; where it ends depends on the order boxes are split in, so a change \
+             to the decoder's operations moves it by a few hundred units",
         ),
         ("meshopt_oct16", "decode_float", "as its decode"),
         (
             "meshopt_oct16:bits=12",
             "decode",
-            "as meshopt_oct16's decode",
+            "as meshopt_oct16's, over more hostile codes (x and y reach 16 times the third \
+             word): the widest box at 91 times what the best code reaches, under 0.006",
         ),
         ("meshopt_oct16:bits=12", "decode_float", "as its decode"),
         (
@@ -226,7 +228,8 @@ fn a_proof_that_runs_out_of_budget_says_so() {
     let mut large = Vec::new();
     for m in unitpack::measure::measure(&Spec::all(), None) {
         for (name, b) in &m.figures.bounds {
-            if b.units > LARGEST {
+            // A NaN bound is as large as any.
+            if b.units.is_nan() || b.units > LARGEST {
                 large.push(format!("{} {name}: {}", m.spec, b.units));
             }
             if !b.tight() {
@@ -238,8 +241,8 @@ fn a_proof_that_runs_out_of_budget_says_so() {
         large.is_empty(),
         "decoder bounds above 2^20 units of 2^-24 (1/16), a figure no include should state \
          without a reason: {large:?}. Tighten the proof (meshopt's fix-up reads its sign from \
-         the integer word for this reason), or state the reason in the family's decode note \
-         and allow it here"
+         the integer word for this reason); a bound that must stay this large needs its reason \
+         in the family's decode note and an exception here that names it"
     );
     let listed: Vec<(String, String)> = LOOSE
         .iter()

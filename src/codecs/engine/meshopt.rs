@@ -167,11 +167,12 @@ fn reference_decode<F: Float>(out: Quant, c: V4<F>) -> V3<F> {
     let z = F::c(1.0) - x.abs() - y.abs();
     let t = F::sel(z.lt(zero), z, zero).named("t");
     // x -= copysign(t, x), t ≤ 0: toward zero by |t|. The sign is read from the integer
-    // word, which the quotient shares (`one ≥ 1`; a zero word gives +0, as `x ≥ 0` reads
-    // it): the same selection on every code, and one no implementation can change, while
-    // `0/one` may come out as a denormal of either sign within division's 2.5 ULP. On a
-    // code no encoder writes (`|x| + |y|` above the third word, with a zero coordinate)
-    // that sign would flip an output component: the proven bound was 51 instead of 2^-20.
+    // word, whose quotient by `one ≥ 1` has its sign (a zero word of either sign, like its
+    // quotient, reads ≥ 0; where `one` is infinite, t is 0 and the side does not
+    // matter): the pseudo-code's selection on every code, and one no implementation can
+    // change. The quotient's can: `0/one` may be a denormal of either sign within
+    // division's 2.5 ULP, and on a code no encoder writes (a zero coordinate, the other
+    // beyond the third word) that sign flips an output component.
     let fix = {
         #[inline(always)]
         |a: F, word: F| a - F::sel(word.ge(zero), -t, t)
