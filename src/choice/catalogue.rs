@@ -51,6 +51,10 @@ pub struct Entry {
     /// The largest error of that sample: a sample maximum, not a bound.
     pub max: f64,
     pub mse: f64,
+    /// The 99th percentile of the error over a user's sample (`choose --sample`); the
+    /// catalogue's own file has none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub p99: Option<f64>,
     pub alu: Alu,
     /// Whether the packed encoder gives the same code on every conformant implementation.
     pub portable: bool,
@@ -142,6 +146,10 @@ impl Entry {
 pub struct Catalogue {
     /// Vectors behind each spec's error figures.
     pub samples: usize,
+    /// What the error figures are over where not the seeded vectors: a user's sample, in
+    /// words (`choose --sample`).
+    #[serde(skip)]
+    pub over: Option<String>,
     /// The error sample's seed, hexadecimal.
     pub vector_seed: String,
     /// The filtering sample's seed, hexadecimal, and its size per separation.
@@ -250,6 +258,7 @@ pub fn compute(
                     mean: st.mean,
                     max: st.max,
                     mse: st.mse,
+                    p99: None,
                     alu: Alu {
                         encode: a[0],
                         encode_float: a[1],
@@ -282,6 +291,7 @@ pub fn compute(
         .collect();
     Catalogue {
         samples,
+        over: None,
         vector_seed: format!("{:#x}", crate::measure::figures::VECTOR_SEED),
         filter_seed: format!("{:#x}", filtering::SEED),
         filter_pairs: filtering::PAIRS,

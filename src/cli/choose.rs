@@ -7,6 +7,7 @@ use crate::choice::filtering::DECIDING_SEPARATION;
 use crate::choice::profiles::{ALU_WEIGHT, rank, rank_frames};
 use crate::choice::query::{Query, Use};
 use serde::Serialize;
+use std::path::Path;
 
 /// A figure with a fixed number of decimals, or `-`.
 fn fig(v: Option<f64>, digits: usize) -> String {
@@ -65,15 +66,18 @@ pub fn legend(c: &Catalogue) -> String {
 
 /// [`legend`], saying whose ALU instructions the enc and dec columns count.
 fn legend_counting(c: &Catalogue, counted: &str) -> String {
+    let over = match &c.over {
+        Some(sample) => format!("{sample}; each row's second line adds the 99th percentile"),
+        None => format!("{} seeded vectors", c.samples),
+    };
     format!(
-        "mean°, max°: round-trip error over {} seeded vectors (max: the sample's largest, \
+        "mean°, max°: round-trip error over {over} (max: the sample's largest, \
          not a bound). enc, dec: ALU instructions of {counted}. \
          bound: proven decode bound in units of 2^-24. filter°: 99th percentile of the \
          filtering error at {DECIDING_SEPARATION}° apart, as the float form's format stores \
          it (no: not filterable). formats: WebGPU names / bits a texel or vertex \
          (~: wider channels that round the fields, or a block format); `unitpack list \
-         --json` has every API's spelling.\n",
-        c.samples
+         --json` has every API's spelling.\n"
     )
 }
 
@@ -142,6 +146,7 @@ pub fn run(
     order: Option<Order>,
     json: bool,
     limit: usize,
+    sample: Option<&Path>,
 ) -> anyhow::Result<String> {
     let c = Catalogue::load();
     // A spec without figures cannot be ranked: said on stderr, where a script's parse of
@@ -196,6 +201,18 @@ pub fn run(
             u.name()
         );
     }
+    let c = match sample {
+        Some(_) if use_case == Some(Use::Frame) => anyhow::bail!(
+            "--sample holds vectors, and tangent frames are ranked over the seeded frames: \
+             drop --sample or --use frame"
+        ),
+        // A query no spec meets keeps the whole catalogue, whose ranking names the
+        // constraint that emptied it.
+        Some(path) if c.specs.iter().any(|e| query.admits(e)) => {
+            super::sample::remeasure(&c, query, &super::sample::read(path)?)
+        }
+        _ => c,
+    };
     match use_case {
         Some(Use::Frame) => frames(&c, query, json, limit),
         Some(u) => by_use(&c, query, u, json, limit),
@@ -225,11 +242,31 @@ fn plain(
             .collect();
         return json_text(&rows);
     }
-    let mut s = format!("{}\n", header());
+    let mut s = over_line(c);
+    s.push_str(&format!("{}\n", header()));
     for ch in &ranked[..n] {
-        s.push_str(&format!("{}\n  {}\n", row(ch.entry), ch.why));
+        s.push_str(&format!(
+            "{}\n  {}\n",
+            row(ch.entry),
+            with_p99(&ch.why, ch.entry)
+        ));
     }
     Ok(format!("{s}{more}\n{}", legend(c)))
+}
+
+/// The line above a table whose figures are over a user's sample, naming it.
+fn over_line(c: &Catalogue) -> String {
+    c.over
+        .as_ref()
+        .map_or(String::new(), |o| format!("errors over {o}\n"))
+}
+
+/// A row's reason, with the 99th percentile of its error where measured over a sample.
+fn with_p99(why: &str, e: &Entry) -> String {
+    match e.p99 {
+        Some(p) => format!("{why}; p99 {p:.5}° over the sample"),
+        None => why.to_string(),
+    }
 }
 
 /// How a profile ranks, for the line above its table.
@@ -269,7 +306,8 @@ fn by_use(
             .collect();
         return json_text(&rows);
     }
-    let mut s = format!(
+    let mut s = over_line(c);
+    s += &format!(
         "{}; {}\n{}\n",
         u.what(u.filters(query)),
         score_words(u),
@@ -277,7 +315,7 @@ fn by_use(
     );
     for r in &ranked[..n] {
         let line = row_counting(r.entry, r.route.encode, r.route.decode);
-        s.push_str(&format!("{line}\n  {}\n", r.why));
+        s.push_str(&format!("{line}\n  {}\n", with_p99(&r.why, r.entry)));
     }
     let counted = "the encoder and decoder this use runs (the float form's where the \
                    route's format holds the float form; the line above the table says which \

@@ -110,7 +110,7 @@ fn same_file(a: &Path, b: &Path) -> bool {
 /// The conventional map's vectors, row by row: `2c/M - 1` per component (the
 /// encoder normalizes them), from 8- or 16-bit RGB; an alpha channel is not part of a
 /// normal and is left out.
-fn conventional_vectors(image: &Picture, input: &Path) -> Result<Vec<[f32; 3]>> {
+pub(super) fn conventional_vectors(image: &Picture, input: &Path) -> Result<Vec<[f32; 3]>> {
     let channels = match image.color {
         ColorType::Rgb => 3,
         ColorType::Rgba => 4,

@@ -16,6 +16,7 @@ mod manifest;
 pub mod output;
 mod report;
 pub mod runtime_dir;
+mod sample;
 mod stream;
 mod verify;
 
@@ -109,6 +110,14 @@ pub enum Command {
         /// Show at most N specs (0: all).
         #[arg(long, value_name = "N", default_value_t = 10)]
         limit: usize,
+        /// Measure the errors over FILE's vectors instead of the seeded uniform ones: a
+        /// glTF asset's normals (.gltf or .glb, every primitive's NORMAL), a tangent-space
+        /// normal map (.png, RGB8 or RGB16, n·½ + ½) or vectors as encode
+        /// reads them (x y z lines; raw little-endian f32 triples if FILE ends in .bin,
+        /// .f32 or .raw). Above 2^20 vectors a seeded uniform subsample is measured, and
+        /// the figures say so.
+        #[arg(long, value_name = "FILE")]
+        sample: Option<PathBuf>,
     },
     /// Write an HTML report of the catalogue that a browser opens from disk: trade-off
     /// charts, every spec's figures, and a page per family with sphere error maps, error
@@ -119,6 +128,11 @@ pub enum Command {
     Report {
         #[arg(long, value_name = "DIR", default_value = "unitpack-report")]
         out: PathBuf,
+        /// Every spec's errors over FILE's vectors instead of the seeded uniform ones (a
+        /// glTF asset, a normal map or a vector stream, as `choose --sample` reads them),
+        /// and the sample's density maps beside each spec's error maps.
+        #[arg(long, value_name = "FILE")]
+        sample: Option<PathBuf>,
     },
     /// Print the include for one or more specs.
     ///
@@ -342,20 +356,21 @@ pub fn run(cli: Cli) -> Result<i32> {
             by,
             json,
             limit,
+            sample,
         } => {
             if let Some(d) = query.filterable
                 && !(d.is_finite() && d > 0.0)
             {
                 anyhow::bail!("--filterable takes a positive number of degrees, not {d}");
             }
-            output::print(&choose::run(&query, by, json, limit)?)?;
+            output::print(&choose::run(&query, by, json, limit, sample.as_deref())?)?;
             Ok(0)
         }
-        Command::Report { out } => {
+        Command::Report { out, sample } => {
             if output::is_stdout(&out) {
                 anyhow::bail!("report writes a folder of files: name a folder, not -");
             }
-            output::print(&report::run(&out)?)?;
+            output::print(&report::run(&out, sample.as_deref())?)?;
             Ok(0)
         }
         Command::Gen {

@@ -9,9 +9,17 @@ use std::path::Path;
 use std::time::Instant;
 
 /// Writes the report into `dir`; returns the summary line for stdout.
-pub fn run(dir: &Path) -> Result<String> {
+/// The report of the catalogue, or with `sample` (`report --sample FILE`) of every spec's
+/// errors over that file's vectors, beside their density maps.
+pub fn run(dir: &Path, sample: Option<&Path>) -> Result<String> {
     let start = Instant::now();
-    let catalogue = Catalogue::load();
+    let mut catalogue = Catalogue::load();
+    let mut density = None;
+    if let Some(path) = sample {
+        let s = super::sample::read(path)?;
+        catalogue = super::sample::remeasure(&catalogue, &Default::default(), &s);
+        density = Some(crate::report::maps::density(&s.vectors));
+    }
     let bar = if std::io::stderr().is_terminal() {
         let bar = ProgressBar::new(catalogue.specs.len() as u64);
         bar.set_style(
@@ -22,7 +30,7 @@ pub fn run(dir: &Path) -> Result<String> {
     } else {
         ProgressBar::hidden()
     };
-    let files = crate::report::render(&catalogue, &|| bar.inc(1))?;
+    let files = crate::report::render(&catalogue, density.as_ref(), &|| bar.inc(1))?;
     bar.finish_and_clear();
     let n = crate::report::write(dir, &files)?;
     Ok(format!(

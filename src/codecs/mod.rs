@@ -78,6 +78,7 @@ registry! {
         xy [FAMILY] => Xy;
         xy_signz [FAMILY] => XySignZ;
         snorm12x2 [FAMILY];
+        gltf_normal [FAMILY] => GltfNormal;
     }
     /// Spherical angles (azimuth and polar angle or z), latitude rings and point sets.
     angular {

@@ -68,6 +68,39 @@ pub fn measure_emitted(e: &Emitted, domain: Domain, samples: usize) -> ErrorStat
     }
 }
 
+/// A spec's round-trip errors over the vectors `vs` (a user's own sample), with the 99th
+/// percentile of the angle (the nearest rank); `None` for a spec that codes no direction.
+pub fn errors_over(spec: &Spec, vs: &[[f32; 3]]) -> Option<(ErrorStats, f64)> {
+    spec.info().domain?;
+    let out = round_trip(&spec.emitted(), vs);
+    let mut angles: Vec<f64> = vs
+        .iter()
+        .zip(&out)
+        .map(|(v, &n)| angle_deg(*v, n))
+        .collect();
+    let squares: f64 = vs
+        .iter()
+        .zip(&out)
+        .map(|(v, &n)| component_mse(*v, n))
+        .sum();
+    let n = vs.len().max(1);
+    let stats = ErrorStats {
+        mean: angles.iter().sum::<f64>() / n as f64,
+        max: angles.iter().copied().fold(0.0, f64::max),
+        mse: squares / n as f64,
+        samples: vs.len(),
+    };
+    let rank = (vs.len() * 99).div_ceil(100).max(1) - 1;
+    let p99 = if angles.is_empty() {
+        0.0
+    } else {
+        *angles
+            .select_nth_unstable_by(rank.min(vs.len() - 1), f64::total_cmp)
+            .1
+    };
+    Some((stats, p99))
+}
+
 /// [`measure`] for every spec, on all cores; the same result as one at a time.
 pub fn measure_all(specs: &[Spec], samples: usize) -> Vec<Option<ErrorStats>> {
     crate::support::par::map(specs, |spec| measure(spec, samples))

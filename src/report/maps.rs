@@ -154,6 +154,75 @@ pub fn measure(spec: &Spec) -> SpecMaps {
     }
 }
 
+/// Where a sample's vectors lie: each cell of both views counts the vectors in it
+/// (`None`: none), so that a reader sees which parts of a spec's error maps the sample
+/// weighs (`report --sample`).
+pub struct Density {
+    pub equirect: Map,
+    pub octahedral: Map,
+}
+
+/// The cells of both views that `v` (nonzero) falls in, row-major indices: the
+/// equirectangular row by latitude (`asin(z)`, +90° at the top), its column by longitude
+/// from −180°; the octahedral cell where the `oct` unfold puts it.
+fn cells_of(v: [f32; 3]) -> (usize, usize) {
+    let v = v.map(f64::from);
+    let len = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    let u = v.map(|c| c / len);
+    let (w, h) = EQUIRECT;
+    let lon = u[1].atan2(u[0]);
+    let lat = u[2].clamp(-1.0, 1.0).asin();
+    let col = (((lon + std::f64::consts::PI) / std::f64::consts::TAU) * w as f64) as usize;
+    let row = (((std::f64::consts::FRAC_PI_2 - lat) / std::f64::consts::PI) * h as f64) as usize;
+    let l1 = u[0].abs() + u[1].abs() + u[2].abs();
+    let (x, y) = (u[0] / l1, u[1] / l1);
+    let (a, b) = if u[2] < 0.0 {
+        ((1.0 - y.abs()) * x.signum(), (1.0 - x.abs()) * y.signum())
+    } else {
+        (x, y)
+    };
+    let n = OCTAHEDRAL as f64;
+    let oc = (((a + 1.0) / 2.0) * n) as usize;
+    let or = (((1.0 - b) / 2.0) * n) as usize;
+    (
+        row.min(h - 1) * w + col.min(w - 1),
+        or.min(OCTAHEDRAL - 1) * OCTAHEDRAL + oc.min(OCTAHEDRAL - 1),
+    )
+}
+
+/// The density of `vectors` (each nonzero and finite, as a sample holds them).
+pub fn density(vectors: &[[f32; 3]]) -> Density {
+    let (w, h) = EQUIRECT;
+    let mut eq = vec![0u64; w * h];
+    let mut oct = vec![0u64; OCTAHEDRAL * OCTAHEDRAL];
+    for &v in vectors {
+        let (e, o) = cells_of(v);
+        eq[e] += 1;
+        oct[o] += 1;
+    }
+    let cells = |c: Vec<u64>| c.into_iter().map(|n| (n > 0).then_some(n as f64)).collect();
+    Density {
+        equirect: Map {
+            width: w,
+            height: h,
+            cells: cells(eq),
+        },
+        octahedral: Map {
+            width: OCTAHEDRAL,
+            height: OCTAHEDRAL,
+            cells: cells(oct),
+        },
+    }
+}
+
+/// A density map as RGB pixels, each cell `scale` pixels square: log(1 + count) on the
+/// maps' colours, from one vector (the bottom) to the densest cell of the two views
+/// (the top); grey where there is none.
+pub fn density_pixels(d: &Density, map: &Map, scale: usize) -> (u32, u32, Vec<u8>) {
+    let top = d.equirect.max().max(d.octahedral.max()).max(2.0);
+    paint(map, scale, |n| colour((n.ln() / top.ln()).clamp(0.0, 1.0)))
+}
+
 /// The colour of `t` in `[0, 1]` on the maps' scale (viridis).
 pub fn colour(t: f64) -> [u8; 3] {
     let c = colorous::VIRIDIS.eval_continuous(t.clamp(0.0, 1.0));
@@ -176,14 +245,17 @@ pub fn scale_position(e: f64) -> f64 {
 
 /// `map` as RGB pixels, each cell `scale` pixels square, coloured on the shared scale.
 pub fn pixels(map: &Map, scale: usize) -> (u32, u32, Vec<u8>) {
+    paint(map, scale, |e| colour(scale_position(e)))
+}
+
+/// `map` as RGB pixels, each cell `scale` pixels square in the colour `of` gives its
+/// value, grey where it has none.
+fn paint(map: &Map, scale: usize, of: impl Fn(f64) -> [u8; 3]) -> (u32, u32, Vec<u8>) {
     let (w, h) = (map.width * scale, map.height * scale);
     let mut px = Vec::with_capacity(w * h * 3);
     for y in 0..h {
         for x in 0..w {
-            let c = match map.cells[(y / scale) * map.width + x / scale] {
-                Some(e) => colour(scale_position(e)),
-                None => OUTSIDE,
-            };
+            let c = map.cells[(y / scale) * map.width + x / scale].map_or(OUTSIDE, &of);
             px.extend_from_slice(&c);
         }
     }

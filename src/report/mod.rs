@@ -71,6 +71,9 @@ struct FamilyPage<'a> {
     /// The shared colour scale's ends, degrees.
     scale_lo: String,
     scale_hi: String,
+    /// A user's sample (`report --sample`), in words: its density maps then stand beside
+    /// each spec's error maps.
+    sample: Option<String>,
     specs: Vec<SpecSection>,
 }
 
@@ -157,17 +160,23 @@ fn index_row(e: &Entry) -> String {
 }
 
 /// The figure rows of a spec's section: a name and a value each.
-fn figure_rows(e: &Entry, samples: usize) -> Vec<String> {
+fn figure_rows(e: &Entry, c: &Catalogue) -> Vec<String> {
     let row = |name: &str, cell: String| format!("<tr><th>{name}</th>{cell}</tr>");
+    let over = match c.over {
+        Some(_) => format!("{} vectors of your sample", c.samples),
+        None => format!("{} vectors", c.samples),
+    };
     let mut rows = vec![
         row("bits", int(e.bits)),
         row("domain", text(&e.domain)),
-        row(
-            &format!("mean error (°, {samples} vectors)"),
-            num(e.mean, 5),
-        ),
+        row(&format!("mean error (°, {over})"), num(e.mean, 5)),
         row("sample max (°)", num(e.max, 5)),
         row("MSE", sci(e.mse, 4)),
+    ];
+    if let Some(p) = e.p99 {
+        rows.push(row("99th percentile (°)", num(p, 5)));
+    }
+    rows.extend([
         row("encode ALU", int(e.alu.encode)),
         row("encode_float ALU", int(e.alu.encode_float)),
         row("decode ALU", int(e.alu.decode)),
@@ -189,7 +198,7 @@ fn figure_rows(e: &Entry, samples: usize) -> Vec<String> {
             &format!("filtering p99 at {DECIDING_SEPARATION}° (°)"),
             filter_cell(e),
         ),
-    ];
+    ]);
     for f in &e.formats {
         let unused = match f.unused_channels {
             0 => String::new(),
@@ -304,8 +313,14 @@ fn png(px: (u32, u32, Vec<u8>)) -> Result<Vec<u8>> {
     crate::support::png_file::encode(px.0, px.1, png::ColorType::Rgb, png::BitDepth::Eight, &px.2)
 }
 
-/// Every file of the report, with `progress` told of each spec measured.
-pub fn render(catalogue: &Catalogue, progress: &(dyn Fn() + Sync)) -> Result<Files> {
+/// Every file of the report, with `progress` told of each spec measured; `density`, a
+/// user's sample whose figures the catalogue holds ([`Catalogue::over`]), adds its
+/// density maps.
+pub fn render(
+    catalogue: &Catalogue,
+    density: Option<&maps::Density>,
+    progress: &(dyn Fn() + Sync),
+) -> Result<Files> {
     let specs: Vec<Spec> = catalogue
         .specs
         .iter()
@@ -334,6 +349,16 @@ pub fn render(catalogue: &Catalogue, progress: &(dyn Fn() + Sync)) -> Result<Fil
         include_bytes!("../../templates/report/table.js").to_vec(),
     );
     files.insert("maps/legend.png".into(), png(maps::legend(256, 12))?);
+    if let Some(d) = density {
+        files.insert(
+            "maps/sample_equirect.png".into(),
+            png(maps::density_pixels(d, &d.equirect, SCALE))?,
+        );
+        files.insert(
+            "maps/sample_octahedral.png".into(),
+            png(maps::density_pixels(d, &d.octahedral, SCALE))?,
+        );
+    }
 
     let mut sections: BTreeMap<&str, Vec<SpecSection>> = BTreeMap::new();
     for ((e, spec), m) in catalogue.specs.iter().zip(&specs).zip(&measured) {
@@ -347,7 +372,11 @@ pub fn render(catalogue: &Catalogue, progress: &(dyn Fn() + Sync)) -> Result<Fil
             png(maps::pixels(&m.octahedral, SCALE))?,
         );
         let histogram = charts::histogram(
-            &format!("{}: error of {} vectors", e.spec, maps::HISTOGRAM_SAMPLES),
+            &format!(
+                "{}: error of {} seeded vectors",
+                e.spec,
+                maps::HISTOGRAM_SAMPLES
+            ),
             &m.histogram,
         )?;
         let filtering = e.filtering.as_ref().map(|f| {
@@ -360,7 +389,7 @@ pub fn render(catalogue: &Catalogue, progress: &(dyn Fn() + Sync)) -> Result<Fil
             .or_default()
             .push(SpecSection {
                 id: e.spec.clone(),
-                figures: figure_rows(e, catalogue.samples),
+                figures: figure_rows(e, catalogue),
                 top,
                 top_text: format!("{top:.4}"),
                 histogram,
@@ -390,6 +419,7 @@ pub fn render(catalogue: &Catalogue, progress: &(dyn Fn() + Sync)) -> Result<Fil
             oct_w: maps::OCTAHEDRAL * SCALE * SHOWN,
             scale_lo: charts::tick(maps::SCALE_DEGREES.0),
             scale_hi: charts::tick(maps::SCALE_DEGREES.1),
+            sample: density.and(catalogue.over.clone()),
             specs,
         };
         files.insert(
@@ -427,15 +457,29 @@ pub fn render(catalogue: &Catalogue, progress: &(dyn Fn() + Sync)) -> Result<Fil
             .context("cannot render the frames page")?
             .into_bytes(),
     );
+    // What the error figures are over: the seeded vectors, or the user's sample.
+    let same_as = match catalogue.over {
+        Some(_) => "`unitpack choose --sample FILE --limit 0 --json`",
+        None => "`unitpack list --json`",
+    };
+    let (over, seeded) = match &catalogue.over {
+        Some(sample) => (sample.clone(), sample.clone()),
+        None => (
+            format!("{} vectors", catalogue.samples),
+            format!(
+                "{} seeded unit vectors (seed {}; hemisphere codecs over +Z)",
+                catalogue.samples, catalogue.vector_seed
+            ),
+        ),
+    };
     let index = Index {
         picks_note: format!(
             "What unitpack choose --use USE ranks first for each use and size: each spec \
              stored as the use stores it, within the bits (a texel's, a vertex's or a \
              record's), scored as error × (1 + ALU/100) with the instructions the use runs \
-             per pixel or vertex. Error: the round trip's sample max over {} vectors; \
+             per pixel or vertex. Error: the round trip's sample max over {over}; \
              where the use filters, the worse of it and the filtering p99 at \
-             {DECIDING_SEPARATION}° apart. The line under each says what decided it.",
-            catalogue.samples
+             {DECIDING_SEPARATION}° apart. The line under each says what decided it."
         ),
         picks: winners
             .iter()
@@ -443,12 +487,11 @@ pub fn render(catalogue: &Catalogue, progress: &(dyn Fn() + Sync)) -> Result<Fil
             .collect(),
         intro: format!(
             "Every spec of the catalogue: round-trip angular error of the packed code over \
-             {} seeded unit vectors (seed {}; hemisphere codecs over +Z), the mean and the \
+             {seeded}, the mean and the \
              sample maximum (the largest error of that sample, not a bound); ALU \
              instructions of the packed encoder and decoder; whether the packed encoder \
              is portable; the proven bound of the decoder; the formats each writes to. \
-             The same figures as `unitpack list --json`.",
-            catalogue.samples, catalogue.vector_seed
+             The same figures as {same_as}."
         ),
         filtering_note: format!(
             "Filtering: the angle between a filtered texel's decoded direction and the \

@@ -16,18 +16,6 @@ fn listed() -> Vec<Value> {
         .clone()
 }
 
-/// Every spec `choose ARGS --limit 0 --json` ranks, in order.
-fn chosen(args: &[&str]) -> Vec<Value> {
-    let mut all = args.to_vec();
-    all.extend(["--limit", "0", "--json"]);
-    let r = ok(&[&["choose"][..], &all].concat());
-    serde_json::from_str::<Value>(&r.stdout)
-        .expect("choose --json is JSON")
-        .as_array()
-        .expect("an array")
-        .clone()
-}
-
 fn ids(v: &[Value]) -> BTreeSet<String> {
     v.iter()
         .map(|e| e["spec"].as_str().expect("a spec id").to_string())

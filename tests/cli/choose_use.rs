@@ -13,16 +13,6 @@ fn list() -> Value {
     serde_json::from_str(&ok(&["list", "--json"]).stdout).expect("list --json is JSON")
 }
 
-/// Every row `choose ARGS --limit 0 --json` ranks, in order.
-fn ranked(args: &[&str]) -> Vec<Value> {
-    let r = ok(&[&["choose"][..], args, &["--limit", "0", "--json"]].concat());
-    serde_json::from_str::<Value>(&r.stdout)
-        .expect("choose --json is JSON")
-        .as_array()
-        .expect("an array")
-        .clone()
-}
-
 fn num(v: &Value, key: &str) -> f64 {
     v[key].as_f64().unwrap_or_else(|| panic!("{key} of {v}"))
 }
@@ -151,7 +141,7 @@ fn each_use_ranks_by_the_score_recomputed_from_list_json() {
             if no_filter {
                 args.push("--no-filter");
             }
-            let got = ranked(&args);
+            let got = chosen(&args);
             assert!(!got.is_empty(), "{args:?} ranks nothing");
             let mut want: Vec<(Route, f64, String)> = specs
                 .iter()
@@ -212,7 +202,7 @@ fn frames_rank_by_their_own_figures() {
     assert!(frames.len() >= 6, "{frames:?}");
     for bits in [32u64, 48, 64] {
         let b = bits.to_string();
-        let got = ranked(&["--use", "frame", "--bits", &b]);
+        let got = chosen(&["--use", "frame", "--bits", &b]);
         let score = |f: &Value| {
             let worst = ["normal", "tangent", "bitangent"]
                 .iter()
@@ -247,7 +237,7 @@ fn frames_rank_by_their_own_figures() {
             assert_eq!(num(row, "error"), score(f).1, "{}", f["spec"]);
         }
     }
-    let top = ranked(&["--use", "frame", "--bits", "64"]);
+    let top = chosen(&["--use", "frame", "--bits", "64"]);
     assert_eq!(top[0]["spec"], "qtangent64");
     assert!(
         top[0]["why"]
@@ -256,7 +246,7 @@ fn frames_rank_by_their_own_figures() {
             .contains("Filament reads these bits")
     );
     // `--domain frame` is the same ranking.
-    assert_eq!(ranked(&["--domain", "frame", "--bits", "64"]), top);
+    assert_eq!(chosen(&["--domain", "frame", "--bits", "64"]), top);
     let e = fails(&["choose", "--use", "frame", "--bits", "16"], "");
     assert!(e.contains("spec that keeps every sign has 32 bits"), "{e}");
 }
@@ -265,7 +255,7 @@ fn frames_rank_by_their_own_figures() {
 /// filters, its table, its format and bits) and what the next row trades.
 #[test]
 fn the_line_under_a_row_says_what_decided_it() {
-    let g = ranked(&["--use", "gbuffer", "--bits", "32"]);
+    let g = chosen(&["--use", "gbuffer", "--bits", "32"]);
     let why = g[0]["why"].as_str().unwrap();
     for part in [
         "best by score",
@@ -278,7 +268,7 @@ fn the_line_under_a_row_says_what_decided_it() {
     ] {
         assert!(why.contains(part), "{part:?} in {why}");
     }
-    let a = ranked(&["--use", "asset", "--bits", "16"]);
+    let a = chosen(&["--use", "asset", "--bits", "16"]);
     let with_table = a
         .iter()
         .find(|r| r["tables"].as_array().is_some_and(|t| !t.is_empty()))
@@ -302,7 +292,7 @@ fn the_line_under_a_row_says_what_decided_it() {
 fn the_table_counts_the_route_it_ranks() {
     let args = ["choose", "--use", "gbuffer", "--bits", "32", "--limit", "0"];
     let table = ok(&args).stdout;
-    let rows = ranked(&args[1..5]);
+    let rows = chosen(&args[1..5]);
     let mut differ = 0;
     for r in &rows {
         let spec = r["spec"].as_str().unwrap();
@@ -340,7 +330,7 @@ fn options_of_another_ranking_are_refused() {
     let e = fails(&["choose", "--use", "vertex", "--domain", "frame"], "");
     assert!(e.contains("--domain frame ranks tangent frames"), "{e}");
     // Explicit constraints still apply under a use.
-    let limited = ranked(&["--use", "vertex", "--bits", "32", "--max-decode-alu", "16"]);
+    let limited = chosen(&["--use", "vertex", "--bits", "32", "--max-decode-alu", "16"]);
     assert!(!limited.is_empty());
     for r in &limited {
         let d = r["route_decode"].as_u64().unwrap();
@@ -354,7 +344,7 @@ fn options_of_another_ranking_are_refused() {
 /// before compression, and the line says so), and a typo in `--format` is named.
 #[test]
 fn constraints_apply_to_the_route() {
-    let limited = ranked(&[
+    let limited = chosen(&[
         "--use",
         "gbuffer",
         "--no-filter",
@@ -373,15 +363,15 @@ fn constraints_apply_to_the_route() {
     }
     let e = fails(&["choose", "--use", "gbuffer", "--portable"], "");
     assert!(e.contains("no spec meets --portable"), "{e}");
-    for r in ranked(&["--use", "gbuffer", "--no-filter", "--portable"]) {
+    for r in chosen(&["--use", "gbuffer", "--no-filter", "--portable"]) {
         let stored = r["stored_in"].as_str().unwrap();
         assert!(stored.contains("uint"), "{}: {stored}", r["spec"]);
     }
-    for r in ranked(&["--use", "normal-map", "--bits", "16"]) {
+    for r in chosen(&["--use", "normal-map", "--bits", "16"]) {
         let stored = r["stored_in"].as_str().unwrap();
         assert!(!stored.starts_with("bc"), "{}: {stored}", r["spec"]);
     }
-    let bc5 = ranked(&["--use", "normal-map", "--format", "bc5-rg-unorm"]);
+    let bc5 = chosen(&["--use", "normal-map", "--format", "bc5-rg-unorm"]);
     assert!(!bc5.is_empty());
     for r in &bc5 {
         assert_eq!(r["stored_in"], "bc5-rg-unorm");
@@ -394,7 +384,7 @@ fn constraints_apply_to_the_route() {
     let e = fails(&["choose", "--use", "vertex", "--format", "snorm16x3"], "");
     assert!(e.contains("did you mean"), "{e}");
     // A vertex attribute is named by its vertex format.
-    let v = ranked(&["--use", "vertex", "--bits", "16"]);
+    let v = chosen(&["--use", "vertex", "--bits", "16"]);
     assert_eq!(v[0]["stored_in"], "snorm8x2", "{}", v[0]);
 }
 

@@ -413,3 +413,13 @@ pub fn on_a_terminal(dir: Option<&Path>, args: &[&str]) -> (i32, String) {
         String::from_utf8_lossy(&out.stdout).into_owned(),
     )
 }
+
+/// Every row `choose ARGS --limit 0 --json` ranks, in order.
+pub fn chosen(args: &[&str]) -> Vec<serde_json::Value> {
+    let r = ok(&[&["choose"][..], args, &["--limit", "0", "--json"]].concat());
+    serde_json::from_str::<serde_json::Value>(&r.stdout)
+        .expect("choose --json is JSON")
+        .as_array()
+        .expect("an array")
+        .clone()
+}

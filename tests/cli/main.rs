@@ -13,6 +13,7 @@ mod help;
 mod include;
 mod list;
 mod report;
+mod sample;
 mod spec;
 mod stdout;
 mod stream;

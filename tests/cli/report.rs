@@ -432,3 +432,86 @@ fn the_report_renders_in_chromium() {
         );
     }
 }
+
+/// `report --sample FILE`: every figure over the file's vectors (the index's rows those
+/// of `choose --sample FILE --json`), the sample named, and its density maps beside each
+/// spec's error maps, coloured only where its vectors lie: a sample within 20° of +Z
+/// leaves every cell below latitude 60° grey.
+#[test]
+fn a_report_over_a_sample_shows_its_figures_and_where_it_lies() {
+    let dir = tempdir();
+    let mut s = 0x2545_f491_4f6c_dd1du64;
+    let mut next = move || {
+        s ^= s << 13;
+        s ^= s >> 7;
+        s ^= s << 17;
+        (s >> 40) as f64 / (1u64 << 24) as f64
+    };
+    let mut text = String::new();
+    for _ in 0..500 {
+        // Within 20° of +Z: z ≥ cos 20°.
+        let z = 1.0 - next() * (1.0 - 20f64.to_radians().cos());
+        let a = next() * std::f64::consts::TAU;
+        let r = (1.0 - z * z).sqrt();
+        text.push_str(&format!("{} {} {}\n", r * a.cos(), r * a.sin(), z));
+    }
+    let file = dir.path().join("cap.txt");
+    std::fs::write(&file, text).unwrap();
+    let out = dir.path().join("report");
+    let f = file.to_str().unwrap();
+    ok(&["report", "--out", out.to_str().unwrap(), "--sample", f]);
+    let index = std::fs::read_to_string(out.join("index.html")).unwrap();
+    assert!(
+        index.contains(&format!("the 500 vectors of {f}")),
+        "the sample is named"
+    );
+    let chosen = chosen(&["--sample", f]);
+    let rows: Vec<&str> = index
+        .lines()
+        .filter(|l| l.starts_with("<tr data-spec="))
+        .collect();
+    assert_eq!(
+        rows.len(),
+        chosen.len(),
+        "every spec, measured over the sample"
+    );
+    for row in rows {
+        let id = row.split('"').nth(1).unwrap();
+        let e = chosen.iter().find(|e| e["spec"] == id).unwrap();
+        let v = values(row);
+        assert_eq!(
+            v[1].parse::<f64>().unwrap(),
+            e["mean"].as_f64().unwrap(),
+            "{id} mean"
+        );
+        assert_eq!(
+            v[2].parse::<f64>().unwrap(),
+            e["max"].as_f64().unwrap(),
+            "{id} max"
+        );
+    }
+    let oct = std::fs::read_to_string(out.join("family/oct.html")).unwrap();
+    assert!(oct.contains("maps/sample_equirect.png") && oct.contains("Where your sample lies"));
+    assert!(oct.contains("99th percentile"), "the percentile row");
+    // The equirectangular density: rows run from +90° down to −90°, so every pixel row
+    // below latitude 60° (a sixth of the height from the top) is grey; above 70° (a ninth)
+    // some are not.
+    let decoder = png::Decoder::new(std::io::BufReader::new(
+        std::fs::File::open(out.join("maps/sample_equirect.png")).unwrap(),
+    ));
+    let mut reader = decoder.read_info().unwrap();
+    let mut buf = vec![0; reader.output_buffer_size().unwrap()];
+    let info = reader.next_frame(&mut buf).unwrap();
+    let (w, h) = (info.width as usize, info.height as usize);
+    let px = |x: usize, y: usize| &buf[(y * w + x) * 3..][..3];
+    let grey: &[u8] = &[200, 200, 200];
+    for y in h / 6..h {
+        for x in 0..w {
+            assert_eq!(px(x, y), grey, "pixel ({x}, {y}) below 60° latitude");
+        }
+    }
+    assert!(
+        (0..h / 9).any(|y| (0..w).any(|x| px(x, y) != grey)),
+        "the cap is coloured"
+    );
+}

@@ -9,7 +9,7 @@ use crate::oracles::{bevy, draco, meshopt, unity};
 use unitpack::codecs::Spec;
 use unitpack::codecs::functions::function::{Function, Role};
 
-fn function(spec: &str, role: Role) -> Function {
+pub(crate) fn function(spec: &str, role: Role) -> Function {
     let spec: Spec = spec.parse().unwrap();
     spec.emitted()
         .functions
@@ -19,7 +19,7 @@ fn function(spec: &str, role: Role) -> Function {
         .unwrap()
 }
 
-fn run(f: &Function, input: &[u32]) -> Vec<u32> {
+pub(crate) fn run(f: &Function, input: &[u32]) -> Vec<u32> {
     let mut out = vec![0u32; f.out_words];
     (f.eval)(input, &mut out);
     out
@@ -27,7 +27,7 @@ fn run(f: &Function, input: &[u32]) -> Vec<u32> {
 
 /// Seeded unit vectors, non-unit and tiny ones, the fold and the axes with both zeros,
 /// and the hostile inputs (zero, NaN, infinities).
-fn inputs() -> Vec<[f32; 3]> {
+pub(crate) fn inputs() -> Vec<[f32; 3]> {
     let mut v = unitpack::support::sampling::random_unit_vectors(43, 200_000, false);
     for k in [-20, -3, 5, 20] {
         let s = 2f32.powi(k);

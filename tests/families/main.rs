@@ -8,6 +8,7 @@ mod eac;
 mod engine;
 mod eqarea_oct;
 mod frames;
+mod gltf;
 mod godot;
 mod ieee;
 mod lambert;

@@ -552,6 +552,14 @@ pub trait Family: Sync + 'static {
     fn engine(&self, _spec: &Spec) -> Option<&'static str> {
         None
     }
+    /// Whether the encoders take the input as it is rather than its direction: glTF's
+    /// quantization clamps each component and normalizes nothing, as gltf-transform does.
+    /// The catalogue's conventions for non-unit and degenerate input (normalized first;
+    /// zero, NaN and infinite input as +Z) do not apply; the family's edge policy says
+    /// what does, and its own tests hold it.
+    fn keeps_length(&self) -> bool {
+        false
+    }
     /// Whether the family codes tangent frames ([`crate::codecs::frames`]): its encoders
     /// take a normal and a tangent, its decoders return the struct `frame`, and the
     /// normal codecs' error statistics, bounds and choices do not apply.

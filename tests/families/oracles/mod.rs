@@ -5,6 +5,7 @@
 pub mod bevy;
 pub mod draco;
 pub mod filament;
+pub mod gltf_transform;
 pub mod godot;
 pub mod meshopt;
 pub mod unity;

@@ -1,0 +1,381 @@
+//! `choose --sample FILE`: the vectors of a user's own data, which the candidates' errors
+//! are measured over instead of the seeded uniform vectors. Real data is not uniform (a
+//! tangent-space normal map crowds around +Z, a hard-surface mesh sits on the axes), so
+//! the ranking a uniform sample gives may not be the one an asset gets.
+//!
+//! FILE is a glTF 2.0 asset (`.gltf` with its buffers, or `.glb`: every mesh primitive's
+//! `NORMAL`, float or quantized as `KHR_mesh_quantization` allows, read through the
+//! `gltf` crate), a tangent-space normal map (`.png`, RGB8 or RGB16, each component
+//! `n·½ + ½`, read as `convert-normal-map` reads it) or a stream of vectors as `encode` reads them:
+//! raw little-endian `f32` triples where the name ends in `.bin`, `.f32` or `.raw`, else
+//! text lines `x y z` (blank and `#` lines skipped). A stream is read in bounded memory:
+//! past [`KEPT`] vectors a seeded reservoir keeps a uniform subsample of them, and the
+//! figures say so; on a terminal a progress bar shows the bytes read, then the specs
+//! measured. Zero, NaN and infinite vectors have no direction to measure against;
+//! they are left out and counted.
+
+use super::grammar;
+use crate::choice::catalogue::{Catalogue, Entry};
+use crate::choice::query::Query;
+use crate::codecs::Spec;
+use crate::support::png_file;
+use anyhow::{Context, Result, bail};
+use rand_core::Rng;
+use rand_pcg::Pcg64Mcg;
+use std::collections::HashSet;
+use std::io::{BufRead, BufReader, Read};
+use std::path::Path;
+
+/// The most vectors measured: larger inputs are subsampled to this many.
+pub const KEPT: usize = 1 << 20;
+
+/// The reservoir's seed, so that a subsample, and its figures, repeat exactly.
+const SEED: u128 = 0x0075_6e69_7470_6163_6b5f_7361_6d70_6c65;
+
+/// A user's vectors and what the figures over them must say.
+pub struct Sample {
+    /// The file, as the user named it.
+    pub name: String,
+    /// The vectors measured (all of them, or the subsample).
+    pub vectors: Vec<[f32; 3]>,
+    /// Vectors with a direction read from the file.
+    pub read: u64,
+    /// Zero, NaN or infinite vectors left out.
+    pub left_out: u64,
+}
+
+impl Sample {
+    /// The sample in words, as the legend and the line above the table give it: the file,
+    /// how many vectors, whether subsampled, how many repeat an earlier one.
+    pub fn describe(&self) -> String {
+        let mut seen = HashSet::with_capacity(self.vectors.len());
+        let repeats = self
+            .vectors
+            .iter()
+            .filter(|v| !seen.insert(v.map(f32::to_bits)))
+            .count();
+        let mut s = if self.read > self.vectors.len() as u64 {
+            format!(
+                "{} vectors of {} (a seeded uniform subsample of its {})",
+                self.vectors.len(),
+                self.name,
+                self.read
+            )
+        } else {
+            format!("the {} vectors of {}", self.vectors.len(), self.name)
+        };
+        s.push_str(&format!(
+            ", {repeats} of them repeats of an earlier one (each counted)"
+        ));
+        if self.left_out > 0 {
+            s.push_str(&format!(
+                "; {} zero, NaN or infinite vectors left out",
+                self.left_out
+            ));
+        }
+        s
+    }
+}
+
+/// A seeded reservoir of at most [`KEPT`] vectors: after `n` offers every one of them
+/// is kept with the same chance (Algorithm R).
+struct Reservoir {
+    kept: Vec<[f32; 3]>,
+    offered: u64,
+    left_out: u64,
+    rng: Pcg64Mcg,
+}
+
+impl Reservoir {
+    fn new() -> Reservoir {
+        Reservoir {
+            kept: Vec::new(),
+            offered: 0,
+            left_out: 0,
+            rng: Pcg64Mcg::new(SEED),
+        }
+    }
+
+    fn offer(&mut self, v: [f32; 3]) {
+        let finite = v.iter().all(|x| x.is_finite());
+        if !finite || v.iter().all(|&x| x == 0.0) {
+            self.left_out += 1;
+            return;
+        }
+        self.offered += 1;
+        if self.kept.len() < KEPT {
+            self.kept.push(v);
+        } else {
+            let j = self.rng.next_u64() % self.offered;
+            if let Some(slot) = self.kept.get_mut(j as usize) {
+                *slot = v;
+            }
+        }
+    }
+
+    fn finish(self, name: &str) -> Result<Sample> {
+        if self.kept.is_empty() {
+            bail!(
+                "{name} holds no vector with a direction ({} zero, NaN or infinite)",
+                self.left_out
+            );
+        }
+        Ok(Sample {
+            name: name.to_string(),
+            vectors: self.kept,
+            read: self.offered,
+            left_out: self.left_out,
+        })
+    }
+}
+
+/// Reads FILE's vectors (see the module).
+pub fn read(path: &Path) -> Result<Sample> {
+    let name = path.display().to_string();
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase)
+        .unwrap_or_default();
+    let mut r = Reservoir::new();
+    if ext == "gltf" || ext == "glb" {
+        gltf_normals(path, &mut r)?;
+        return r.finish(&name);
+    }
+    if ext == "png" {
+        let image = png_file::read(path)?;
+        for v in super::convert::conventional_vectors(&image, path)? {
+            r.offer(v);
+        }
+        return r.finish(&name);
+    }
+    let file = std::fs::File::open(path).with_context(|| format!("cannot open {name}"))?;
+    // A stream may be large: its bytes read show on a terminal.
+    let bar = progress(file.metadata().map_or(0, |m| m.len()), "reading the sample");
+    let mut input = BufReader::new(bar.wrap_read(file));
+    if matches!(ext.as_str(), "bin" | "f32" | "raw") {
+        let mut record = [0u8; 12];
+        let mut at = 0u64;
+        loop {
+            let mut filled = 0;
+            while filled < 12 {
+                match input.read(&mut record[filled..]) {
+                    Ok(0) => break,
+                    Ok(n) => filled += n,
+                    Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
+                    Err(e) => return Err(e).with_context(|| format!("cannot read {name}")),
+                }
+            }
+            match filled {
+                0 => break,
+                12 => {}
+                n => bail!(
+                    "{name} ends {n} bytes into record {} (a vector is 12 bytes: three \
+                     little-endian f32; a text file of `x y z` lines needs another extension \
+                     than .bin, .f32 or .raw)",
+                    at + 1
+                ),
+            }
+            r.offer(std::array::from_fn(|i| {
+                f32::from_le_bytes(record[4 * i..4 * i + 4].try_into().expect("4 bytes"))
+            }));
+            at += 1;
+        }
+        bar.finish_and_clear();
+        return r.finish(&name);
+    }
+    let mut line = String::new();
+    let mut number = 0u64;
+    loop {
+        line.clear();
+        let n = input
+            .by_ref()
+            .take(super::stream::MAX_LINE as u64 + 1)
+            .read_line(&mut line)
+            .with_context(|| {
+                format!(
+                    "cannot read {name} as text at line {} (raw f32 triples need the \
+                     extension .bin, .f32 or .raw)",
+                    number + 1
+                )
+            })?;
+        if n == 0 {
+            break;
+        }
+        number += 1;
+        if n > super::stream::MAX_LINE {
+            bail!(
+                "{name}: line {number} is longer than {} bytes",
+                super::stream::MAX_LINE
+            );
+        }
+        let text = line
+            .trim_start_matches('\u{feff}')
+            .trim_end_matches(['\n', '\r']);
+        let t = text.trim_start_matches([' ', '\t']);
+        if t.is_empty() || t.starts_with('#') {
+            continue;
+        }
+        let v = grammar::parse_vector(text)
+            .map_err(|e| anyhow::anyhow!("{name}: line {number}: {e}: {}", grammar::quote(text)))?;
+        r.offer(v);
+    }
+    bar.finish_and_clear();
+    r.finish(&name)
+}
+
+/// A progress bar of `len` steps on a terminal's stderr, hidden elsewhere (a script's
+/// stderr stays clean).
+fn progress(len: u64, what: &str) -> indicatif::ProgressBar {
+    use std::io::IsTerminal;
+    if !std::io::stderr().is_terminal() {
+        return indicatif::ProgressBar::hidden();
+    }
+    let bar = indicatif::ProgressBar::new(len);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template(&format!(
+            "{what} {{bar:30}} {{percent}}% ({{elapsed}})"
+        ))
+        .expect("a valid template"),
+    );
+    bar
+}
+
+/// Every mesh primitive's `NORMAL` of a glTF asset, in mesh order: float, or normalized
+/// `BYTE`/`SHORT` read as glTF's rule `max(c/M, -1)` (`KHR_mesh_quantization`); sparse
+/// accessors with their substitutions applied. The JSON is read without the crate's
+/// validation, which refuses the extensions it does not know (the quantization among them)
+/// even where only the attributes matter.
+fn gltf_normals(path: &Path, r: &mut Reservoir) -> Result<()> {
+    use gltf::accessor::{DataType, Dimensions, Iter};
+    let name = path.display();
+    let bytes = std::fs::read(path).with_context(|| format!("cannot read {name}"))?;
+    let gltf = gltf::Gltf::from_slice_without_validation(&bytes)
+        .with_context(|| format!("{name} is not a glTF 2.0 asset"))?;
+    let buffers: Vec<Vec<u8>> = gltf
+        .buffers()
+        .map(|b| match b.source() {
+            gltf::buffer::Source::Bin => gltf.blob.clone().with_context(|| {
+                format!(
+                    "{name}: buffer {} is the GLB's BIN chunk, which it lacks",
+                    b.index()
+                )
+            }),
+            gltf::buffer::Source::Uri(uri) => buffer_at(path, uri)
+                .with_context(|| format!("{name}: buffer {} ({uri})", b.index())),
+        })
+        .collect::<Result<_>>()?;
+    let data = |b: gltf::Buffer| buffers.get(b.index()).map(Vec::as_slice);
+    let mut primitives = 0;
+    for mesh in gltf.meshes() {
+        for (k, prim) in mesh.primitives().enumerate() {
+            let Some(a) = prim.get(&gltf::Semantic::Normals) else {
+                continue;
+            };
+            let at = format!(
+                "{name}: mesh {} primitive {k}: NORMAL (accessor {})",
+                mesh.index(),
+                a.index()
+            );
+            if a.dimensions() != Dimensions::Vec3 {
+                bail!("{at} is {:?}, not VEC3", a.dimensions());
+            }
+            let short = || format!("{at} points outside its buffer");
+            match (a.data_type(), a.normalized()) {
+                (DataType::F32, _) => {
+                    for v in Iter::<[f32; 3]>::new(a.clone(), data).with_context(short)? {
+                        r.offer(v);
+                    }
+                }
+                (DataType::I8, true) => {
+                    for v in Iter::<[i8; 3]>::new(a.clone(), data).with_context(short)? {
+                        r.offer(v.map(|c| (f32::from(c) / 127.0).max(-1.0)));
+                    }
+                }
+                (DataType::I16, true) => {
+                    for v in Iter::<[i16; 3]>::new(a.clone(), data).with_context(short)? {
+                        r.offer(v.map(|c| (f32::from(c) / 32767.0).max(-1.0)));
+                    }
+                }
+                (t, n) => bail!(
+                    "{at} is {t:?}{}: glTF's NORMAL is FLOAT, or normalized BYTE or SHORT with KHR_mesh_quantization",
+                    if n { " normalized" } else { "" }
+                ),
+            }
+            primitives += 1;
+        }
+    }
+    if primitives == 0 {
+        bail!("{name} has no mesh primitive with a NORMAL attribute");
+    }
+    Ok(())
+}
+
+/// A buffer's bytes from its URI: a base64 `data:` URI, or a file beside the asset
+/// (percent-escapes decoded).
+fn buffer_at(asset: &Path, uri: &str) -> Result<Vec<u8>> {
+    use base64::Engine;
+    if let Some(rest) = uri.strip_prefix("data:") {
+        let (_, payload) = rest
+            .split_once(";base64,")
+            .context("a data URI without base64 data")?;
+        return base64::engine::general_purpose::STANDARD
+            .decode(payload)
+            .context("its base64 data is not valid");
+    }
+    let mut file = Vec::new();
+    let bytes = uri.as_bytes();
+    let mut i = 0;
+    while i < bytes.len() {
+        let hex = |j: usize| (bytes.get(j).copied()).and_then(|b| (b as char).to_digit(16));
+        match (bytes[i], hex(i + 1), hex(i + 2)) {
+            (b'%', Some(h), Some(l)) => {
+                file.push((h * 16 + l) as u8);
+                i += 3;
+            }
+            (b, _, _) => {
+                file.push(b);
+                i += 1;
+            }
+        }
+    }
+    let file = String::from_utf8(file).context("its URI is not UTF-8 once unescaped")?;
+    let at = asset.parent().unwrap_or(Path::new(".")).join(&file);
+    std::fs::read(&at).with_context(|| format!("cannot read {}", at.display()))
+}
+
+/// The catalogue's specs that meet `query`, each re-measured over `sample` (mean, sample
+/// max, MSE and the 99th percentile); every other figure (ALU, bounds, filtering) is the
+/// catalogue's. Specs that fail a constraint are not measured: none of the constraints
+/// reads an error figure.
+pub fn remeasure(c: &Catalogue, query: &Query, sample: &Sample) -> Catalogue {
+    let kept: Vec<&Entry> = c.specs.iter().filter(|e| query.admits(e)).collect();
+    let bar = progress(kept.len() as u64, "measuring each spec over the sample");
+    let figures = crate::support::par::map(&kept, |e| {
+        let spec: Spec = e.spec.parse().expect("the catalogue's ids are specs");
+        let f = crate::measure::quality::errors_over(&spec, &sample.vectors);
+        bar.inc(1);
+        f
+    });
+    bar.finish_and_clear();
+    let specs = kept
+        .into_iter()
+        .zip(figures)
+        .filter_map(|(e, f)| {
+            let (stats, p99) = f?;
+            Some(Entry {
+                mean: stats.mean,
+                max: stats.max,
+                mse: stats.mse,
+                p99: Some(p99),
+                ..e.clone()
+            })
+        })
+        .collect();
+    Catalogue {
+        samples: sample.vectors.len(),
+        over: Some(sample.describe()),
+        specs,
+        ..c.clone()
+    }
+}
