@@ -100,7 +100,7 @@ fn check_output(input: &Path, output: &Path, force: bool) -> Result<()> {
 }
 
 /// Whether two paths name one existing file (the output would replace the input).
-fn same_file(a: &Path, b: &Path) -> bool {
+pub(super) fn same_file(a: &Path, b: &Path) -> bool {
     match (a.canonicalize(), b.canonicalize()) {
         (Ok(a), Ok(b)) => a == b,
         _ => false,

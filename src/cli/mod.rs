@@ -9,6 +9,7 @@ mod choose;
 mod convert;
 pub mod figure_cache;
 mod generate;
+mod gltf;
 pub mod grammar;
 mod include;
 mod list;
@@ -197,6 +198,31 @@ pub enum Command {
         check: bool,
         /// Also replace files at catalogue paths that unitpack did not write, and read-only
         /// files. Never makes generate remove anything.
+        #[arg(long)]
+        force: bool,
+    },
+    /// Rewrite a glTF asset's normals with a spec: IN and OUT are both .gltf or both .glb.
+    ///
+    /// With gltf_normal8 or gltf_normal16 every mesh primitive's NORMAL becomes a normalized
+    /// BYTE or SHORT accessor (KHR_mesh_quantization, declared used and required): any
+    /// viewer loads it. With any other vector spec the codes go to a new attribute
+    /// _UNITPACK_<ID> (UNSIGNED_SHORT VEC2 for a 32-bit code, VEC4 for 64 bits) beside the
+    /// original NORMAL, for a renderer that decodes with the emitted functions. Everything
+    /// else is kept; the codes are appended (to the GLB's BIN chunk, or as a data: URI
+    /// buffer), and the error over the asset's normals is printed. OUT is written
+    /// atomically, beside IN for a .gltf (its buffers and images are relative paths); an
+    /// existing OUT is replaced only with --force.
+    Gltf {
+        /// The asset to read (.gltf with its buffers, or .glb).
+        #[arg(value_name = "IN")]
+        input: PathBuf,
+        /// The asset to write.
+        #[arg(value_name = "OUT")]
+        output: PathBuf,
+        /// The vector spec the normals are encoded with.
+        #[arg(long, value_name = "SPEC", required = true)]
+        normals: String,
+        /// Replace an existing OUT (read-only too).
         #[arg(long)]
         force: bool,
     },
@@ -405,6 +431,15 @@ pub fn run(cli: Cli) -> Result<i32> {
                 );
             }
             with_figure_cache(|| generate_with(&out, check, force))
+        }
+        Command::Gltf {
+            input,
+            output,
+            normals,
+            force,
+        } => {
+            output::print(&gltf::run(&input, &output, &normals, force)?)?;
+            Ok(0)
         }
         Command::ConvertNormalMap {
             input,

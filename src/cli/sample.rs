@@ -139,7 +139,13 @@ pub fn read(path: &Path) -> Result<Sample> {
         .unwrap_or_default();
     let mut r = Reservoir::new();
     if ext == "gltf" || ext == "glb" {
-        gltf_normals(path, &mut r)?;
+        let bytes = std::fs::read(path).with_context(|| format!("cannot read {name}"))?;
+        let normals = gltf_normals(path, &bytes)?;
+        for a in &normals.primitives {
+            for &v in &normals.accessors[a] {
+                r.offer(v);
+            }
+        }
         return r.finish(&name);
     }
     if ext == "png" {
@@ -241,16 +247,22 @@ fn progress(len: u64, what: &str) -> indicatif::ProgressBar {
     bar
 }
 
-/// Every mesh primitive's `NORMAL` of a glTF asset, in mesh order: float, or normalized
-/// `BYTE`/`SHORT` read as glTF's rule `max(c/M, -1)` (`KHR_mesh_quantization`); sparse
-/// accessors with their substitutions applied. The JSON is read without the crate's
-/// validation, which refuses the extensions it does not know (the quantization among them)
-/// even where only the attributes matter.
-fn gltf_normals(path: &Path, r: &mut Reservoir) -> Result<()> {
+/// A glTF asset's `NORMAL` attributes: each mesh primitive's accessor index, in mesh
+/// order, and each such accessor's vectors, read once however many primitives share it.
+pub(super) struct GltfNormals {
+    pub primitives: Vec<usize>,
+    pub accessors: std::collections::BTreeMap<usize, Vec<[f32; 3]>>,
+}
+
+/// Every mesh primitive's `NORMAL` of a glTF asset: float, or normalized `BYTE`/`SHORT`
+/// read as glTF's rule `max(c/M, -1)` (`KHR_mesh_quantization`); sparse accessors with
+/// their substitutions applied. The JSON is read without the crate's validation, which
+/// refuses the extensions it does not know (the quantization among them) even where only
+/// the attributes matter.
+pub(super) fn gltf_normals(path: &Path, bytes: &[u8]) -> Result<GltfNormals> {
     use gltf::accessor::{DataType, Dimensions, Iter};
     let name = path.display();
-    let bytes = std::fs::read(path).with_context(|| format!("cannot read {name}"))?;
-    let gltf = gltf::Gltf::from_slice_without_validation(&bytes)
+    let gltf = gltf::Gltf::from_slice_without_validation(bytes)
         .with_context(|| format!("{name} is not a glTF 2.0 asset"))?;
     let buffers: Vec<Vec<u8>> = gltf
         .buffers()
@@ -266,12 +278,19 @@ fn gltf_normals(path: &Path, r: &mut Reservoir) -> Result<()> {
         })
         .collect::<Result<_>>()?;
     let data = |b: gltf::Buffer| buffers.get(b.index()).map(Vec::as_slice);
-    let mut primitives = 0;
+    let mut out = GltfNormals {
+        primitives: Vec::new(),
+        accessors: Default::default(),
+    };
     for mesh in gltf.meshes() {
         for (k, prim) in mesh.primitives().enumerate() {
             let Some(a) = prim.get(&gltf::Semantic::Normals) else {
                 continue;
             };
+            out.primitives.push(a.index());
+            if out.accessors.contains_key(&a.index()) {
+                continue;
+            }
             let at = format!(
                 "{name}: mesh {} primitive {k}: NORMAL (accessor {})",
                 mesh.index(),
@@ -281,39 +300,35 @@ fn gltf_normals(path: &Path, r: &mut Reservoir) -> Result<()> {
                 bail!("{at} is {:?}, not VEC3", a.dimensions());
             }
             let short = || format!("{at} points outside its buffer");
-            match (a.data_type(), a.normalized()) {
-                (DataType::F32, _) => {
-                    for v in Iter::<[f32; 3]>::new(a.clone(), data).with_context(short)? {
-                        r.offer(v);
-                    }
-                }
-                (DataType::I8, true) => {
-                    for v in Iter::<[i8; 3]>::new(a.clone(), data).with_context(short)? {
-                        r.offer(v.map(|c| (f32::from(c) / 127.0).max(-1.0)));
-                    }
-                }
-                (DataType::I16, true) => {
-                    for v in Iter::<[i16; 3]>::new(a.clone(), data).with_context(short)? {
-                        r.offer(v.map(|c| (f32::from(c) / 32767.0).max(-1.0)));
-                    }
-                }
+            let vs: Vec<[f32; 3]> = match (a.data_type(), a.normalized()) {
+                (DataType::F32, _) => Iter::<[f32; 3]>::new(a.clone(), data)
+                    .with_context(short)?
+                    .collect(),
+                (DataType::I8, true) => Iter::<[i8; 3]>::new(a.clone(), data)
+                    .with_context(short)?
+                    .map(|v| v.map(|c| (f32::from(c) / 127.0).max(-1.0)))
+                    .collect(),
+                (DataType::I16, true) => Iter::<[i16; 3]>::new(a.clone(), data)
+                    .with_context(short)?
+                    .map(|v| v.map(|c| (f32::from(c) / 32767.0).max(-1.0)))
+                    .collect(),
                 (t, n) => bail!(
                     "{at} is {t:?}{}: glTF's NORMAL is FLOAT, or normalized BYTE or SHORT with KHR_mesh_quantization",
                     if n { " normalized" } else { "" }
                 ),
-            }
-            primitives += 1;
+            };
+            out.accessors.insert(a.index(), vs);
         }
     }
-    if primitives == 0 {
+    if out.primitives.is_empty() {
         bail!("{name} has no mesh primitive with a NORMAL attribute");
     }
-    Ok(())
+    Ok(out)
 }
 
 /// A buffer's bytes from its URI: a base64 `data:` URI, or a file beside the asset
 /// (percent-escapes decoded).
-fn buffer_at(asset: &Path, uri: &str) -> Result<Vec<u8>> {
+pub(super) fn buffer_at(asset: &Path, uri: &str) -> Result<Vec<u8>> {
     use base64::Engine;
     if let Some(rest) = uri.strip_prefix("data:") {
         let (_, payload) = rest

@@ -423,3 +423,23 @@ pub fn chosen(args: &[&str]) -> Vec<serde_json::Value> {
         .expect("an array")
         .clone()
 }
+
+/// A GLB of `json` and the BIN chunk `bin`, each padded to 4 bytes as the container asks.
+pub fn glb(json: &serde_json::Value, bin: &[u8]) -> Vec<u8> {
+    let mut j = json.to_string().into_bytes();
+    j.resize(j.len().next_multiple_of(4), b' ');
+    let mut b = bin.to_vec();
+    b.resize(b.len().next_multiple_of(4), 0);
+    let total = 12 + 8 + j.len() + 8 + b.len();
+    let mut out = Vec::new();
+    out.extend(b"glTF");
+    out.extend(2u32.to_le_bytes());
+    out.extend((total as u32).to_le_bytes());
+    out.extend((j.len() as u32).to_le_bytes());
+    out.extend(b"JSON");
+    out.extend(&j);
+    out.extend((b.len() as u32).to_le_bytes());
+    out.extend(b"BIN\0");
+    out.extend(&b);
+    out
+}

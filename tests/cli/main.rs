@@ -9,6 +9,7 @@ mod choose_use;
 mod common;
 mod convert;
 mod generate;
+mod gltf;
 mod help;
 mod include;
 mod list;

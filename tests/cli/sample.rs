@@ -275,7 +275,7 @@ fn a_gltf_assets_normals_are_its_sample() {
     assert_eq!(sampled("mesh.gltf"), sampled("mesh.txt"));
     // .glb: the bytes of normalized BYTE normals, with -128 among them.
     let codes: Vec<[i8; 3]> = vec![[127, 0, 0], [-128, 5, 9], [3, -100, 60], [0, 0, 127]];
-    let mut bin: Vec<u8> = codes
+    let bin: Vec<u8> = codes
         .iter()
         .flat_map(|c| [c[0] as u8, c[1] as u8, c[2] as u8, 0])
         .collect();
@@ -287,22 +287,8 @@ fn a_gltf_assets_normals_are_its_sample() {
         "bufferViews": [{"buffer": 0, "byteLength": bin.len(), "byteStride": 4}],
         "accessors": [{"bufferView": 0, "componentType": 5120, "normalized": true, "count": 4, "type": "VEC3"}],
         "meshes": [{"primitives": [{"attributes": {"NORMAL": 0}}]}]
-    })
-    .to_string();
-    let mut json = json.into_bytes();
-    json.resize(json.len().next_multiple_of(4), b' ');
-    bin.resize(bin.len().next_multiple_of(4), 0);
-    let total = 12 + 8 + json.len() + 8 + bin.len();
-    let mut glb = Vec::new();
-    glb.extend(b"glTF");
-    glb.extend(2u32.to_le_bytes());
-    glb.extend((total as u32).to_le_bytes());
-    glb.extend((json.len() as u32).to_le_bytes());
-    glb.extend(b"JSON");
-    glb.extend(&json);
-    glb.extend((bin.len() as u32).to_le_bytes());
-    glb.extend(b"BIN\0");
-    glb.extend(&bin);
+    });
+    let glb = glb(&json, &bin);
     std::fs::write(d.join("quantized.glb"), glb).unwrap();
     let fetched: Vec<[f32; 3]> = codes
         .iter()
