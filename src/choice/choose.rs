@@ -92,12 +92,6 @@ pub struct Choice<'a> {
 type Test = Box<dyn Fn(&Entry) -> bool>;
 
 impl Query {
-    /// Whether `e` meets every constraint of the query: the specs a user's sample is
-    /// measured for (`choose --sample`), none of whose tests reads an error figure.
-    pub fn admits(&self, e: &Entry) -> bool {
-        self.constraints().iter().all(|(_, _, test)| test(e))
-    }
-
     /// The constraints in the order they apply: as typed, what each keeps, and the test.
     fn constraints(&self) -> Vec<(String, String, Test)> {
         let mut c: Vec<(String, String, Test)> = Vec::new();

@@ -101,6 +101,17 @@ fn route_tests(q: &Query) -> Vec<Test> {
 /// The best route of `e` under `u` within `query`'s budget and format that passes every
 /// one of `tests`, if it has one.
 fn route<'a>(u: Use, e: &'a Entry, query: &Query, tests: &[Test]) -> Option<Route<'a>> {
+    // A G-buffer encodes interpolated normals, which are not unit length: an encoder that
+    // takes its input as it is (glTF's quantization, `Family::keeps_length`) would store
+    // their shortness as error that the catalogue's unit vectors do not show, and its
+    // missing normalize would rank it ahead of the same storage with one.
+    if u == Use::Gbuffer
+        && crate::codecs::FAMILIES
+            .iter()
+            .any(|f| f.info().name == e.family && f.keeps_length())
+    {
+        return None;
+    }
     let budget = query.bits.unwrap_or(u32::MAX);
     let named = |f: &Format| query.format.as_deref().is_none_or(|q| f.matches(q));
     // Encoder and decoder counted: a G-buffer runs both per pixel; a vertex stream and

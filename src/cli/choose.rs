@@ -206,12 +206,28 @@ pub fn run(
             "--sample holds vectors, and tangent frames are ranked over the seeded frames: \
              drop --sample or --use frame"
         ),
-        // A query no spec meets keeps the whole catalogue, whose ranking names the
-        // constraint that emptied it.
-        Some(path) if c.specs.iter().any(|e| query.admits(e)) => {
-            super::sample::remeasure(&c, query, &super::sample::read(path)?)
+        Some(path) => {
+            // The specs the seeded catalogue ranks are the candidates (no constraint reads
+            // an error figure); a query none meets keeps the whole catalogue, whose
+            // ranking names the constraint that emptied it.
+            let ranked: Option<std::collections::HashSet<String>> = match use_case {
+                Some(u) => rank(&c, query, u)
+                    .ok()
+                    .map(|r| r.iter().map(|x| x.entry.spec.clone()).collect()),
+                None => choose(&c, query, order.unwrap_or(Order::Max))
+                    .ok()
+                    .map(|r| r.iter().map(|x| x.entry.spec.clone()).collect()),
+            };
+            match ranked {
+                Some(ids) => super::sample::remeasure(
+                    &c,
+                    |e| ids.contains(&e.spec),
+                    &super::sample::read(path)?,
+                ),
+                None => c,
+            }
         }
-        _ => c,
+        None => c,
     };
     match use_case {
         Some(Use::Frame) => frames(&c, query, json, limit),
@@ -264,7 +280,7 @@ fn over_line(c: &Catalogue) -> String {
 /// A row's reason, with the 99th percentile of its error where measured over a sample.
 fn with_p99(why: &str, e: &Entry) -> String {
     match e.p99 {
-        Some(p) => format!("{why}; p99 {p:.5}° over the sample"),
+        Some(p) => format!("{why}; round-trip p99 {p:.5}° over the sample"),
         None => why.to_string(),
     }
 }

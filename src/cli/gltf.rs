@@ -108,7 +108,7 @@ fn read_glb(bytes: &[u8], name: &str) -> Result<Glb> {
     Ok(Glb { json, bin })
 }
 
-fn write_glb(json: &[u8], bin: Option<&[u8]>) -> Vec<u8> {
+fn write_glb(json: &[u8], bin: Option<&[u8]>) -> Result<Vec<u8>> {
     let pad = |v: &mut Vec<u8>, with: u8| v.resize(v.len().next_multiple_of(4), with);
     let mut json = json.to_vec();
     pad(&mut json, b' ');
@@ -118,6 +118,11 @@ fn write_glb(json: &[u8], bin: Option<&[u8]>) -> Vec<u8> {
         b
     });
     let total = 12 + 8 + json.len() + bin.as_ref().map_or(0, |b| 8 + b.len());
+    if total > u32::MAX as usize {
+        bail!(
+            "the new GLB would be {total} bytes: a GLB holds at most 4 GiB (its lengths are 32-bit)"
+        );
+    }
     let mut out = Vec::with_capacity(total);
     out.extend(b"glTF");
     out.extend(2u32.to_le_bytes());
@@ -130,7 +135,7 @@ fn write_glb(json: &[u8], bin: Option<&[u8]>) -> Vec<u8> {
         out.extend(0x004e_4942u32.to_le_bytes());
         out.extend(&b);
     }
-    out
+    Ok(out)
 }
 
 /// `array[key]` of `v`, made an empty array where absent.
@@ -182,6 +187,7 @@ pub fn run(input: &Path, out: &Path, normals: &str, force: bool) -> Result<Strin
                  relative to itself",
                 input
                     .parent()
+                    .filter(|d| !d.as_os_str().is_empty())
                     .map_or(".".into(), |d| d.display().to_string())
             );
         }
@@ -291,14 +297,36 @@ pub fn run(input: &Path, out: &Path, normals: &str, force: bool) -> Result<Strin
         }
     }
     let bytes = if glb {
-        write_glb(&serde_json::to_vec(&doc)?, bin.as_deref())
+        write_glb(&serde_json::to_vec(&doc)?, bin.as_deref())?
     } else {
         let mut s = serde_json::to_string_pretty(&doc)?;
         s.push('\n');
         s.into_bytes()
     };
     write_atomic_with(out, &bytes, force)?;
-    let (stats, p99) = crate::measure::quality::errors_over(&spec, &all).expect("a vector codec");
+    // Zero, NaN and infinite normals have no direction to measure against: encoded (to
+    // the spec's documented code) but left out of the figures, and counted.
+    let measured: Vec<[f32; 3]> = all
+        .iter()
+        .copied()
+        .filter(|v| v.iter().all(|x| x.is_finite()) && v.iter().any(|&x| x != 0.0))
+        .collect();
+    let left_out = all.len() - measured.len();
+    let figures = match crate::measure::quality::errors_over(&spec, &measured) {
+        Some((stats, p99)) if !measured.is_empty() => format!(
+            "error over the asset's {} normals with a direction: mean {:.5}°, p99 {p99:.5}°, \
+             max {:.5}° (the round trip of each; a sample maximum, not a bound){}",
+            measured.len(),
+            stats.mean,
+            stats.max,
+            if left_out > 0 {
+                format!("; {left_out} zero, NaN or infinite normals left out")
+            } else {
+                String::new()
+            }
+        ),
+        _ => format!("no normal of the asset has a direction ({left_out} zero, NaN or infinite)"),
+    };
     let how = if store.attribute == "NORMAL" {
         format!(
             "NORMAL as {QUANTIZATION} {}",
@@ -316,12 +344,9 @@ pub fn run(input: &Path, out: &Path, normals: &str, force: bool) -> Result<Strin
     };
     Ok(format!(
         "wrote {}: {} normals of {} accessors ({primitives} primitives) encoded as {spec}, \
-         {how}\nerror over the asset: mean {:.5}°, p99 {p99:.5}°, max {:.5}° (the round trip \
-         of each normal; a sample maximum, not a bound)\n",
+         {how}\n{figures}\n",
         out.display(),
         all.len(),
         found.accessors.len(),
-        stats.mean,
-        stats.max
     ))
 }

@@ -17,7 +17,7 @@ pub fn run(dir: &Path, sample: Option<&Path>) -> Result<String> {
     let mut density = None;
     if let Some(path) = sample {
         let s = super::sample::read(path)?;
-        catalogue = super::sample::remeasure(&catalogue, &Default::default(), &s);
+        catalogue = super::sample::remeasure(&catalogue, |_| true, &s);
         density = Some(crate::report::maps::density(&s.vectors));
     }
     let bar = if std::io::stderr().is_terminal() {

@@ -78,10 +78,16 @@ pub fn errors_over(spec: &Spec, vs: &[[f32; 3]]) -> Option<(ErrorStats, f64)> {
         .zip(&out)
         .map(|(v, &n)| angle_deg(*v, n))
         .collect();
+    // A user's vectors need not be unit length (a normal map's `2c/M - 1`): the MSE
+    // compares directions, the input's made unit in f64 first.
+    let unit = |v: [f32; 3]| {
+        let l = v.iter().map(|&x| f64::from(x).powi(2)).sum::<f64>().sqrt();
+        v.map(|x| (f64::from(x) / l) as f32)
+    };
     let squares: f64 = vs
         .iter()
         .zip(&out)
-        .map(|(v, &n)| component_mse(*v, n))
+        .map(|(v, &n)| component_mse(unit(*v), n))
         .sum();
     let n = vs.len().max(1);
     let stats = ErrorStats {

@@ -215,8 +215,8 @@ pub fn density(vectors: &[[f32; 3]]) -> Density {
     }
 }
 
-/// A density map as RGB pixels, each cell `scale` pixels square: log(1 + count) on the
-/// maps' colours, from one vector (the bottom) to the densest cell of the two views
+/// A density map as RGB pixels, each cell `scale` pixels square: the log of the count on
+/// the maps' colours, from one vector (the bottom) to the densest cell of the two views
 /// (the top); grey where there is none.
 pub fn density_pixels(d: &Density, map: &Map, scale: usize) -> (u32, u32, Vec<u8>) {
     let top = d.equirect.max().max(d.octahedral.max()).max(2.0);

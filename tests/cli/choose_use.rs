@@ -41,6 +41,11 @@ type Route = (f64, u64, Option<String>, f64, [f64; 2]);
 
 /// The best route of spec `e` under `use_` within `bits`, by the documented rules.
 fn route(use_: &str, filtered: bool, e: &Value, bits: u64) -> Option<Route> {
+    // A G-buffer leaves out glTF's quantization, whose encoder does not normalize
+    // (docs/commands.md, choose).
+    if use_ == "gbuffer" && e["family"] == "gltf_normal" {
+        return None;
+    }
     let max = num(e, "max");
     let functions = |float_form: bool| -> [f64; 2] {
         if float_form {

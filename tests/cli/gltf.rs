@@ -197,7 +197,9 @@ fn quantized_normals_are_gltf_transforms_and_the_asset_validates() {
     );
     assert_eq!(r.code, 0, "{r:?}");
     assert!(
-        r.stdout.contains("63 normals") && r.stdout.contains("error over the asset: mean"),
+        r.stdout.contains("63 normals")
+            && r.stdout
+                .contains("error over the asset's 63 normals with a direction: mean"),
         "{r:?}"
     );
     let out: Value = serde_json::from_slice(&std::fs::read(d.join("out8.gltf")).unwrap()).unwrap();
@@ -386,6 +388,41 @@ fn gltf_refuses_what_it_cannot_write_and_loses_nothing() {
         let r = run_in(Some(d), &[&["gltf"][..], args].concat(), "");
         assert_eq!(r.code, 2, "{args:?}: {r:?}");
         assert!(r.stderr.contains(want), "{args:?}: {}", r.stderr);
+    }
+    // A zero normal (no valid asset has one, but real ones do) is encoded, left out of the
+    // figures and counted.
+    let mut zero = ns.clone();
+    zero[4] = [0.0, 0.0, 0.0];
+    std::fs::write(d.join("zero.glb"), glb(&asset(&zero, None), &buffer(&zero))).unwrap();
+    let r = run_in(
+        Some(d),
+        &["gltf", "zero.glb", "zero_out.glb", "--normals", "oct16"],
+        "",
+    );
+    assert_eq!(r.code, 0, "{r:?}");
+    assert!(
+        r.stdout.contains("8 normals with a direction")
+            && r.stdout
+                .contains("1 zero, NaN or infinite normals left out")
+            && !r.stdout.contains("NaN°"),
+        "{r:?}"
+    );
+    // A NORMAL that names no accessor, and one that is not VEC3: refused by name.
+    for (attrs, want) in [
+        (json!({"NORMAL": 99}), "not a valid glTF 2.0 asset"),
+        (json!({"NORMAL": 0}), "not VEC3"),
+    ] {
+        let mut bad = asset(&ns, None);
+        bad["meshes"][0]["primitives"][0]["attributes"] = attrs;
+        bad["accessors"][0]["type"] = json!("VEC2");
+        std::fs::write(d.join("bad.glb"), glb(&bad, &buffer(&ns))).unwrap();
+        let r = run_in(
+            Some(d),
+            &["gltf", "bad.glb", "out.glb", "--normals", "oct16"],
+            "",
+        );
+        assert_eq!(r.code, 2, "{r:?}");
+        assert!(r.stderr.contains(want), "{}", r.stderr);
     }
     assert_eq!(std::fs::read(d.join("taken.glb")).unwrap(), b"not mine");
     assert_eq!(std::fs::read_to_string(d.join("mesh.gltf")).unwrap(), gltf);

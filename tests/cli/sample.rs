@@ -100,6 +100,15 @@ fn a_rows_figures_are_its_round_trip_over_the_samples_vectors() {
             "{spec}: the seeded figure was replaced"
         );
     }
+    // Under --use too: the candidates are the seeded ranking's.
+    for use_ in ["gbuffer", "vertex", "asset", "normal-map"] {
+        let q = ["--use", use_, "--bits", "32"];
+        assert_eq!(
+            ids(&chosen(&[&q[..], &["--sample", path]].concat())),
+            ids(&chosen(&q)),
+            "--use {use_}: the same candidates"
+        );
+    }
     // The table names the sample above and below it.
     let t = ok(&[
         "choose", "--bits", "16", "--domain", "sphere", "--sample", path,
@@ -170,12 +179,23 @@ fn text_raw_floats_and_a_normal_map_are_read_as_samples() {
     assert!(t.starts_with(&over), "{t}");
 }
 
+/// Twice the kept size, +Z then +X: a uniform subsample holds both (its vectors are all
+/// repeats but two), where keeping the first 2^20 would hold +Z alone.
 #[test]
 fn a_stream_beyond_the_kept_size_is_subsampled_the_same_way_each_time() {
     let dir = tempdir();
-    let n = (1 << 20) + 5;
+    let n = 2 << 20;
     let file = dir.path().join("big.bin");
-    std::fs::write(&file, binary(&seeded(n, 77))).unwrap();
+    let vs: Vec<[f32; 3]> = (0..n)
+        .map(|i| {
+            if i < n / 2 {
+                [0.0, 0.0, 1.0]
+            } else {
+                [1.0, 0.0, 0.0]
+            }
+        })
+        .collect();
+    std::fs::write(&file, binary(&vs)).unwrap();
     let args = [
         "choose",
         "--bits",
@@ -188,7 +208,7 @@ fn a_stream_beyond_the_kept_size_is_subsampled_the_same_way_each_time() {
     ];
     let first = ok(&args).stdout;
     let want = format!(
-        "1048576 vectors of {} (a seeded uniform subsample of its {n})",
+        "1048576 vectors of {} (a seeded uniform subsample of its {n}), 1048574 of them repeats",
         file.display()
     );
     assert!(first.contains(&want), "{first}");
