@@ -23,12 +23,14 @@
 use crate::codecs::Spec;
 use crate::codecs::functions::function::{Emitted, Function, Inputs, Role, first_with_same_code};
 use crate::codecs::functions::inputs::{edge_vectors, generate};
+use crate::measure::figures::Bound;
 pub use crate::measure::figures::UNIT;
 pub use crate::model::deviant::{Class, Classes, Deviation, Mode};
 use crate::model::deviant::{begin_item, item_chose, with};
 use crate::model::trace::Module;
 use std::collections::HashMap;
 use std::fmt::Write;
+use std::ops::Range;
 use std::sync::Arc;
 
 /// What [`run`] evaluates.
@@ -235,53 +237,94 @@ fn sample(inputs: &Inputs, items: usize, n: Option<usize>) -> Vec<usize> {
     out
 }
 
-/// One function over the sampled items under every class and mode.
-fn measure(
-    spec: &str,
-    module: &Module,
+/// Items of one function per part of its measurement: parts of about this many items,
+/// from every function, are what the cores take in turn, so that a precise search, which
+/// costs thousands of deviant operations per item, is spread over every core rather than
+/// left to one at the end.
+const PART_ITEMS: usize = 512;
+
+/// What every part of one function's measurement reads: the sampled items' words, their
+/// indices among the verify inputs (which seed their deviations), and a decoder's bound.
+struct Prepared {
+    input: Vec<u32>,
+    index: Vec<usize>,
+    proven: Option<Bound>,
+}
+
+fn prepare(module: &Module, f: &Function, sample_n: Option<usize>) -> Prepared {
+    let iw = f.in_words;
+    let all = generate(&f.inputs, iw);
+    let index = sample(&f.inputs, all.len() / iw, sample_n);
+    let input = index
+        .iter()
+        .flat_map(|&i| &all[i * iw..][..iw])
+        .copied()
+        .collect();
+    Prepared {
+        input,
+        index,
+        proven: crate::measure::decode_bound::cached(module, f),
+    }
+}
+
+/// What one class did to a run of items, over every mode.
+struct Part {
+    changed: usize,
+    by_mode: Vec<usize>,
+    max_ulp: Option<u64>,
+    max_dev: Option<f64>,
+    /// The run's first changed item in mode order, then item order, with its mode's index.
+    example: Option<(usize, Example)>,
+}
+
+/// The items `items` of a function ([`Prepared`]) under each class in every mode.
+fn measure_part(
     f: &Function,
+    p: &Prepared,
     classes: &[Classes],
     modes: &[Mode],
-    sample_n: Option<usize>,
-    promised: bool,
-) -> Vec<Row> {
-    let input = generate(&f.inputs, f.in_words);
-    let items = sample(&f.inputs, input.len() / f.in_words, sample_n);
+    items: Range<usize>,
+) -> Vec<Part> {
     let (iw, ow) = (f.in_words, f.out_words);
-    let mut reference = vec![0u32; items.len() * ow];
-    for (k, &i) in items.iter().enumerate() {
-        (f.eval)(&input[i * iw..][..iw], &mut reference[k * ow..][..ow]);
+    let n = items.len();
+    let input = &p.input[items.start * iw..items.end * iw];
+    let index = &p.index[items];
+    let mut reference = vec![0u32; n * ow];
+    for k in 0..n {
+        (f.eval)(&input[k * iw..][..iw], &mut reference[k * ow..][..ow]);
     }
     let mut out = vec![0u32; ow];
-    let proven = crate::measure::decode_bound::cached(module, f);
-    let bound = proven.as_ref().map(|b| b.units);
+    let bound = p.proven.as_ref().map(|b| b.units);
     classes
         .iter()
         .map(|&class| {
-            let mut changed = vec![false; items.len()];
-            let mut by_mode = Vec::new();
-            let mut max_ulp = float_output(f.role).then_some(0u64);
-            let mut max_dev = bound.map(|_| 0f64);
-            let mut example = None;
+            let mut changed = vec![false; n];
+            let mut part = Part {
+                changed: 0,
+                by_mode: Vec::new(),
+                max_ulp: float_output(f.role).then_some(0u64),
+                max_dev: bound.map(|_| 0f64),
+                example: None,
+            };
             // The first mode's outputs, and which items it computed without a choice: those
             // come out the same in every mode ([`item_chose`]) and are not evaluated again.
-            let mut first = vec![0u32; items.len() * ow];
-            let mut forced = vec![false; items.len()];
+            let mut first = vec![0u32; n * ow];
+            let mut forced = vec![false; n];
             for (m, &mode) in modes.iter().enumerate() {
-                let mut n = 0;
+                let mut count = 0;
                 with(
                     Some(Deviation {
                         classes: class,
                         mode,
                     }),
                     || {
-                        for (k, &i) in items.iter().enumerate() {
-                            let inp = &input[i * iw..][..iw];
+                        for k in 0..n {
+                            let inp = &input[k * iw..][..iw];
                             let kept = &mut first[k * ow..][..ow];
                             if m > 0 && forced[k] {
                                 out.copy_from_slice(kept);
                             } else {
-                                begin_item(i as u64);
+                                begin_item(index[k] as u64);
                                 (f.eval_dev)(inp, &mut out);
                                 if m == 0 {
                                     kept.copy_from_slice(&out);
@@ -290,45 +333,74 @@ fn measure(
                             }
                             let r = &reference[k * ow..][..ow];
                             if out != r {
-                                n += 1;
+                                count += 1;
                                 changed[k] = true;
-                                if let Some(m) = &mut max_ulp {
+                                if let Some(u) = &mut part.max_ulp {
                                     let d = r.iter().zip(&out).map(|(&a, &b)| ulp_distance(a, b));
-                                    *m = d.fold(*m, u64::max);
+                                    *u = d.fold(*u, u64::max);
                                 }
-                                if let Some(m) = &mut max_dev {
-                                    *m = r
+                                if let Some(d) = &mut part.max_dev {
+                                    *d = r
                                         .iter()
                                         .zip(&out)
                                         .map(|(&a, &b)| abs_units(a, b))
-                                        .fold(*m, f64::max);
+                                        .fold(*d, f64::max);
                                 }
-                                example.get_or_insert_with(|| Example {
-                                    mode,
-                                    input: inp.to_vec(),
-                                    reference: r.to_vec(),
-                                    deviant: out.clone(),
+                                part.example.get_or_insert_with(|| {
+                                    let example = Example {
+                                        mode,
+                                        input: inp.to_vec(),
+                                        reference: r.to_vec(),
+                                        deviant: out.clone(),
+                                    };
+                                    (m, example)
                                 });
                             }
                         }
                     },
                 );
-                by_mode.push(n);
+                part.by_mode.push(count);
             }
+            part.changed = changed.iter().filter(|&&c| c).count();
+            part
+        })
+        .collect()
+}
+
+/// One function's row per class: its parts ([`measure_part`], in item order) summed, as
+/// one pass over every item would have counted them.
+fn merge(f: &Function, p: &Prepared, classes: &[Classes], parts: &[&Vec<Part>]) -> Vec<Row> {
+    classes
+        .iter()
+        .enumerate()
+        .map(|(c, &class)| {
+            let of_class = || parts.iter().map(move |p| &p[c]);
+            let mut by_mode = Vec::new();
+            for part in of_class() {
+                by_mode.resize(part.by_mode.len(), 0);
+                for (sum, n) in by_mode.iter_mut().zip(&part.by_mode) {
+                    *sum += n;
+                }
+            }
+            // The earliest mode's first changed item; the earliest part's within a mode.
+            let example = of_class()
+                .filter_map(|p| p.example.as_ref())
+                .reduce(|a, b| if b.0 < a.0 { b } else { a })
+                .map(|e| e.1.clone());
             Row {
-                spec: spec.to_string(),
+                spec: String::new(),
                 function: f.name,
                 role: f.role,
                 class,
-                items: items.len(),
-                changed: changed.iter().filter(|&&c| c).count(),
+                items: p.index.len(),
+                changed: of_class().map(|p| p.changed).sum(),
                 by_mode,
-                max_ulp,
-                max_dev,
-                bound,
-                bound_at: proven.as_ref().map(|b| b.at.clone()),
+                max_ulp: of_class().filter_map(|p| p.max_ulp).reduce(u64::max),
+                max_dev: of_class().filter_map(|p| p.max_dev).reduce(f64::max),
+                bound: p.proven.as_ref().map(|b| b.units),
+                bound_at: p.proven.as_ref().map(|b| b.at.clone()),
                 example,
-                promised,
+                promised: false,
             }
         })
         .collect()
@@ -342,7 +414,7 @@ pub fn run(specs: &[Spec], classes: &[Classes], opts: &Options) -> PortabilityRe
     // precise spec's decoders are its fast spec's) deviates alike item by item: it is
     // measured once and its rows repeated under its own name.
     let same = first_with_same_code(&emitted);
-    let mut jobs: Vec<(String, &Module, &Function, bool)> = Vec::new();
+    let mut jobs: Vec<(&Module, &Function, bool)> = Vec::new();
     let mut job_of: HashMap<(usize, usize), usize> = HashMap::new();
     let mut order: Vec<(String, &Function, usize)> = Vec::new();
     for (i, (spec, e)) in specs.iter().zip(&emitted).enumerate() {
@@ -354,7 +426,7 @@ pub fn run(specs: &[Spec], classes: &[Classes], opts: &Options) -> PortabilityRe
             let job = match same[i][j] {
                 Some(first) => job_of[&first],
                 None => {
-                    jobs.push((spec.id(), &e.module, f, promised));
+                    jobs.push((&e.module, f, promised));
                     job_of.insert((i, j), jobs.len() - 1);
                     jobs.len() - 1
                 }
@@ -362,15 +434,47 @@ pub fn run(specs: &[Spec], classes: &[Classes], opts: &Options) -> PortabilityRe
             order.push((spec.id(), f, job));
         }
     }
-    // On every core: each item's deviations are seeded by the item alone
-    // (`begin_item`), so the rows are the same as one job at a time, in the same order.
-    let measured = crate::support::par::map(&jobs, |(id, module, f, promised)| {
-        measure(id, module, f, classes, &modes, opts.sample, *promised)
+    // On every core, a function at a time and then a part at a time: each item's
+    // deviations are seeded by the item alone (`begin_item`), so the rows are the same as
+    // one pass over every item, in the same order.
+    let prepared =
+        crate::support::par::map(&jobs, |(module, f, _)| prepare(module, f, opts.sample));
+    let parts: Vec<(usize, Range<usize>)> = prepared
+        .iter()
+        .enumerate()
+        .flat_map(|(job, p)| {
+            let n = p.index.len();
+            let part = move |k: usize| (job, k * PART_ITEMS..n.min((k + 1) * PART_ITEMS));
+            (0..n.div_ceil(PART_ITEMS)).map(part)
+        })
+        .collect();
+    let measured = crate::support::par::map(&parts, |(job, items)| {
+        measure_part(
+            jobs[*job].1,
+            &prepared[*job],
+            classes,
+            &modes,
+            items.clone(),
+        )
     });
+    let mut of_job: Vec<Vec<&Vec<Part>>> = vec![Vec::new(); jobs.len()];
+    for ((job, _), m) in parts.iter().zip(&measured) {
+        of_job[*job].push(m);
+    }
+    let rows: Vec<Vec<Row>> = jobs
+        .iter()
+        .zip(&prepared)
+        .zip(&of_job)
+        .map(|((&(_, f, promised), p), parts)| {
+            let mut rows = merge(f, p, classes, parts);
+            rows.iter_mut().for_each(|r| r.promised = promised);
+            rows
+        })
+        .collect();
     let rows = order
         .into_iter()
         .flat_map(|(id, f, job)| {
-            measured[job].iter().map(move |r| Row {
+            rows[job].iter().map(move |r| Row {
                 spec: id.clone(),
                 function: f.name,
                 role: f.role,

@@ -23,14 +23,6 @@ pub fn f32_literal(v: f32) -> String {
         v.is_finite(),
         "non-finite literal {v}: compare against f32::MAX instead"
     );
-    // Every f32's decimal expansion ends within 112 significant digits: this is exact.
-    let expansion = format!("{:.120e}", v);
-    let (mantissa, exponent) = expansion.split_once('e').expect("exponential form");
-    let truncated = |p: usize| {
-        // `p` significant digits: the leading one, the point, then `p - 1` more.
-        let digits = &mantissa[..mantissa.find('.').expect("a point") + p];
-        format!("{}e{exponent}", digits.trim_end_matches('.'))
-    };
     let reads_back = |s: &str| {
         s.parse::<f32>().map(f32::to_bits) == Ok(v.to_bits())
             && s.parse::<f64>().map(|d| (d as f32).to_bits()) == Ok(v.to_bits())
@@ -39,6 +31,15 @@ pub fn f32_literal(v: f32) -> String {
     let mut s = if reads_back(&debug) && v.abs() < f32::MAX {
         debug
     } else {
+        // Every f32's decimal expansion ends within 112 significant digits: this is exact.
+        // (Only here: the exact expansion costs more than the rest of a function's text.)
+        let expansion = format!("{:.120e}", v);
+        let (mantissa, exponent) = expansion.split_once('e').expect("exponential form");
+        let truncated = |p: usize| {
+            // `p` significant digits: the leading one, the point, then `p - 1` more.
+            let digits = &mantissa[..mantissa.find('.').expect("a point") + p];
+            format!("{}e{exponent}", digits.trim_end_matches('.'))
+        };
         (1..=17)
             .flat_map(|p| {
                 let rounded = format!("{:.*e}", p - 1, v);
