@@ -158,6 +158,10 @@ pub struct Catalogue {
     pub specs: Vec<Entry>,
     /// Frames behind each tangent-frame spec's figures.
     pub frame_samples: usize,
+    /// What the frames' figures are over where not the seeded frames: a user's sample, in
+    /// words (`choose --use frame --sample`).
+    #[serde(skip)]
+    pub frames_over: Option<String>,
     pub frames: Vec<FrameEntry>,
 }
 
@@ -297,6 +301,7 @@ pub fn compute(
         filter_pairs: filtering::PAIRS,
         specs,
         frame_samples: frame_rows.first().map_or(0, |r| r.0),
+        frames_over: None,
         frames: frame_rows.into_iter().map(|r| r.1).collect(),
     }
 }

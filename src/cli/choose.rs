@@ -202,10 +202,9 @@ pub fn run(
         );
     }
     let c = match sample {
-        Some(_) if use_case == Some(Use::Frame) => anyhow::bail!(
-            "--sample holds vectors, and tangent frames are ranked over the seeded frames: \
-             drop --sample or --use frame"
-        ),
+        Some(path) if use_case == Some(Use::Frame) => {
+            super::sample::remeasure_frames(&c, &super::sample::read_frames(path)?)
+        }
         Some(path) => {
             // The specs the seeded catalogue ranks are the candidates (no constraint reads
             // an error figure); a query none meets keeps the whole catalogue, whose
@@ -357,7 +356,9 @@ fn frames(c: &Catalogue, query: &Query, json: bool, limit: usize) -> anyhow::Res
             .collect();
         return json_text(&rows);
     }
-    let mut s = format!(
+    let over = c.frames_over.as_ref();
+    let mut s = over.map_or(String::new(), |o| format!("errors over {o}\n"));
+    s += &format!(
         "{}; {}\n{:<20} {:>4} {:>19} {:>19} {:>19} {:>5} {:>5} {:>5}  engine\n",
         Use::Frame.what(false),
         score_words(Use::Frame),
@@ -388,7 +389,8 @@ fn frames(c: &Catalogue, query: &Query, json: bool, limit: usize) -> anyhow::Res
         ));
     }
     Ok(format!(
-        "{s}{more}\nnormal°, tangent°, bitangent°: mean / sample max of the angle error over {} seeded orthonormal frames (not a bound). flips: frames whose handedness changed. enc, dec: ALU instructions of the packed encoder and decoder. engine: the engine that reads these bits.\n",
-        c.frame_samples
+        "{s}{more}\nnormal°, tangent°, bitangent°: mean / sample max of the angle error over {} (not a bound). flips: frames whose handedness changed. enc, dec: ALU instructions of the packed encoder and decoder. engine: the engine that reads these bits.\n",
+        over.cloned()
+            .unwrap_or_else(|| format!("{} seeded orthonormal frames", c.frame_samples))
     ))
 }

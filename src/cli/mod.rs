@@ -115,8 +115,10 @@ pub enum Command {
         /// glTF asset's normals (.gltf or .glb, every primitive's NORMAL), a tangent-space
         /// normal map (.png, RGB8 or RGB16, n·½ + ½) or vectors as encode
         /// reads them (x y z lines; raw little-endian f32 triples if FILE ends in .bin,
-        /// .f32 or .raw). Above 2^20 vectors a seeded uniform subsample is measured, and
-        /// the figures say so.
+        /// .f32 or .raw). With --use frame, FILE's tangent frames: a glTF asset's
+        /// primitives with both NORMAL and TANGENT, or frames as encode reads them (nx ny
+        /// nz tx ty tz w lines; raw records of seven f32). Above 2^20 items a seeded
+        /// uniform subsample is measured, and the figures say so.
         #[arg(long, value_name = "FILE")]
         sample: Option<PathBuf>,
     },

@@ -15,7 +15,7 @@
 //! they are left out and counted.
 
 use super::grammar;
-use crate::choice::catalogue::{Catalogue, Entry};
+use crate::choice::catalogue::{Catalogue, Entry, FrameEntry};
 use crate::codecs::Spec;
 use crate::support::png_file;
 use anyhow::{Context, Result, bail};
@@ -31,21 +31,28 @@ pub const KEPT: usize = 1 << 20;
 /// The reservoir's seed, so that a subsample, and its figures, repeat exactly.
 const SEED: u128 = 0x0075_6e69_7470_6163_6b5f_7361_6d70_6c65;
 
-/// A user's vectors and what the figures over them must say.
-pub struct Sample {
+/// A user's vectors (`N` = 3) or tangent frames (`N` = 7: `n`, `t` and the bitangent's
+/// sign, as `encode` reads a frame) and what the figures over them must say.
+pub struct Sample<const N: usize = 3> {
     /// The file, as the user named it.
     pub name: String,
-    /// The vectors measured (all of them, or the subsample).
-    pub vectors: Vec<[f32; 3]>,
-    /// Vectors with a direction read from the file.
+    /// The items measured (all of them, or the subsample).
+    pub vectors: Vec<[f32; N]>,
+    /// Items with a direction read from the file.
     pub read: u64,
-    /// Zero, NaN or infinite vectors left out.
+    /// Items left out: a zero, NaN or infinite vector (or a frame's normal or tangent).
     pub left_out: u64,
 }
 
-impl Sample {
+/// A user's tangent frames.
+pub type FrameSample = Sample<7>;
+
+impl<const N: usize> Sample<N> {
+    /// What the items are called.
+    const ITEMS: &'static str = if N == 3 { "vectors" } else { "frames" };
+
     /// The sample in words, as the legend and the line above the table give it: the file,
-    /// how many vectors, whether subsampled, how many repeat an earlier one.
+    /// how many items, whether subsampled, how many repeat an earlier one.
     pub fn describe(&self) -> String {
         let mut seen = HashSet::with_capacity(self.vectors.len());
         let repeats = self
@@ -53,40 +60,51 @@ impl Sample {
             .iter()
             .filter(|v| !seen.insert(v.map(f32::to_bits)))
             .count();
+        let items = Self::ITEMS;
         let mut s = if self.read > self.vectors.len() as u64 {
             format!(
-                "{} vectors of {} (a seeded uniform subsample of its {})",
+                "{} {items} of {} (a seeded uniform subsample of its {})",
                 self.vectors.len(),
                 self.name,
                 self.read
             )
         } else {
-            format!("the {} vectors of {}", self.vectors.len(), self.name)
+            format!("the {} {items} of {}", self.vectors.len(), self.name)
         };
         s.push_str(&format!(
             ", {repeats} of them repeats of an earlier one (each counted)"
         ));
         if self.left_out > 0 {
-            s.push_str(&format!(
-                "; {} zero, NaN or infinite vectors left out",
-                self.left_out
-            ));
+            let what = if N == 3 {
+                "zero, NaN or infinite vectors"
+            } else {
+                "frames with a zero, NaN or infinite normal or tangent, or a tangent along \
+                 the normal,"
+            };
+            s.push_str(&format!("; {} {what} left out", self.left_out));
         }
         s
     }
 }
 
-/// A seeded reservoir of at most [`KEPT`] vectors: after `n` offers every one of them
+/// Whether a frame's tangent lies along its normal (`[n, t]`): no bitangent, so no angle
+/// to measure it by.
+fn along(nt: &[f32]) -> bool {
+    let [n, t] = [0, 3].map(|k| [0, 1, 2].map(|i| f64::from(nt[k + i])));
+    (0..3).all(|i| n[(i + 1) % 3] * t[(i + 2) % 3] == n[(i + 2) % 3] * t[(i + 1) % 3])
+}
+
+/// A seeded reservoir of at most [`KEPT`] items: after `n` offers every one of them
 /// is kept with the same chance (Algorithm R).
-struct Reservoir {
-    kept: Vec<[f32; 3]>,
+struct Reservoir<const N: usize> {
+    kept: Vec<[f32; N]>,
     offered: u64,
     left_out: u64,
     rng: Pcg64Mcg,
 }
 
-impl Reservoir {
-    fn new() -> Reservoir {
+impl<const N: usize> Reservoir<N> {
+    fn new() -> Reservoir<N> {
         Reservoir {
             kept: Vec::new(),
             offered: 0,
@@ -95,9 +113,11 @@ impl Reservoir {
         }
     }
 
-    fn offer(&mut self, v: [f32; 3]) {
+    fn offer(&mut self, v: [f32; N]) {
+        // A vector, and a frame's normal and tangent, each need a direction.
         let finite = v.iter().all(|x| x.is_finite());
-        if !finite || v.iter().all(|&x| x == 0.0) {
+        let zero = |c: &[f32]| c.iter().all(|&x| x == 0.0);
+        if !finite || zero(&v[..3]) || N == 7 && (zero(&v[3..6]) || along(&v[..6])) {
             self.left_out += 1;
             return;
         }
@@ -112,10 +132,11 @@ impl Reservoir {
         }
     }
 
-    fn finish(self, name: &str) -> Result<Sample> {
+    fn finish(self, name: &str) -> Result<Sample<N>> {
         if self.kept.is_empty() {
             bail!(
-                "{name} holds no vector with a direction ({} zero, NaN or infinite)",
+                "{name} holds no {} with a direction ({} zero, NaN or infinite)",
+                if N == 3 { "vector" } else { "frame" },
                 self.left_out
             );
         }
@@ -130,12 +151,7 @@ impl Reservoir {
 
 /// Reads FILE's vectors (see the module).
 pub fn read(path: &Path) -> Result<Sample> {
-    let name = path.display().to_string();
-    let ext = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase)
-        .unwrap_or_default();
+    let (name, ext) = name_and_extension(path);
     let mut r = Reservoir::new();
     if ext == "gltf" || ext == "glb" {
         let bytes = std::fs::read(path).with_context(|| format!("cannot read {name}"))?;
@@ -154,16 +170,70 @@ pub fn read(path: &Path) -> Result<Sample> {
         }
         return r.finish(&name);
     }
+    read_stream(path, r, grammar::parse_vector)
+}
+
+/// Reads FILE's tangent frames: a glTF asset's primitives that have both `NORMAL` and
+/// `TANGENT` (its `w` the bitangent's sign), or a stream of frames as `encode` reads them
+/// (text lines `nx ny nz tx ty tz w`, or raw records of seven little-endian `f32`).
+pub fn read_frames(path: &Path) -> Result<FrameSample> {
+    let (name, ext) = name_and_extension(path);
+    let mut r = Reservoir::new();
+    if ext == "gltf" || ext == "glb" {
+        let bytes = std::fs::read(path).with_context(|| format!("cannot read {name}"))?;
+        let g = gltf_normals(path, &bytes)?;
+        let mut any = false;
+        for (n, t) in g.primitives.iter().zip(&g.tangents) {
+            let Some(t) = t else { continue };
+            any = true;
+            for (n, t) in g.accessors[n].iter().zip(&g.tangent_accessors[t]) {
+                r.offer([n[0], n[1], n[2], t[0], t[1], t[2], t[3]]);
+            }
+        }
+        if !any {
+            bail!(
+                "{name} has no mesh primitive with both NORMAL and TANGENT: its tangent frames cannot be sampled"
+            );
+        }
+        return r.finish(&name);
+    }
+    if ext == "png" {
+        bail!(
+            "{name}: a normal map holds normals, not tangent frames; --use frame samples a glTF asset's NORMAL and TANGENT, or frames as `encode` reads them"
+        );
+    }
+    read_stream(path, r, grammar::parse_frame)
+}
+
+/// The file's name as the user gave it, and its extension in lower case.
+fn name_and_extension(path: &Path) -> (String, String) {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase)
+        .unwrap_or_default();
+    (path.display().to_string(), ext)
+}
+
+/// A stream of items as `encode` reads them: raw little-endian `f32` records where the
+/// name ends in `.bin`, `.f32` or `.raw`, else text lines read by `parse`.
+fn read_stream<const N: usize>(
+    path: &Path,
+    mut r: Reservoir<N>,
+    parse: fn(&str) -> Result<[f32; N], grammar::LineError>,
+) -> Result<Sample<N>> {
+    let (name, ext) = name_and_extension(path);
+    let item = if N == 3 { "a vector" } else { "a frame" };
     let file = std::fs::File::open(path).with_context(|| format!("cannot open {name}"))?;
     // A stream may be large: its bytes read show on a terminal.
     let bar = progress(file.metadata().map_or(0, |m| m.len()), "reading the sample");
     let mut input = BufReader::new(bar.wrap_read(file));
     if matches!(ext.as_str(), "bin" | "f32" | "raw") {
-        let mut record = [0u8; 12];
+        let mut record = vec![0u8; 4 * N];
         let mut at = 0u64;
         loop {
             let mut filled = 0;
-            while filled < 12 {
+            while filled < record.len() {
                 match input.read(&mut record[filled..]) {
                     Ok(0) => break,
                     Ok(n) => filled += n,
@@ -171,15 +241,17 @@ pub fn read(path: &Path) -> Result<Sample> {
                     Err(e) => return Err(e).with_context(|| format!("cannot read {name}")),
                 }
             }
-            match filled {
-                0 => break,
-                12 => {}
-                n => bail!(
-                    "{name} ends {n} bytes into record {} (a vector is 12 bytes: three \
-                     little-endian f32; a text file of `x y z` lines needs another extension \
-                     than .bin, .f32 or .raw)",
-                    at + 1
-                ),
+            if filled == 0 {
+                break;
+            }
+            if filled < record.len() {
+                bail!(
+                    "{name} ends {filled} bytes into record {} ({item} is {} bytes: {N} \
+                     little-endian f32; a text file needs another extension than .bin, .f32 \
+                     or .raw)",
+                    at + 1,
+                    4 * N
+                );
             }
             r.offer(std::array::from_fn(|i| {
                 f32::from_le_bytes(record[4 * i..4 * i + 4].try_into().expect("4 bytes"))
@@ -199,7 +271,7 @@ pub fn read(path: &Path) -> Result<Sample> {
             .read_line(&mut line)
             .with_context(|| {
                 format!(
-                    "cannot read {name} as text at line {} (raw f32 triples need the \
+                    "cannot read {name} as text at line {} (raw f32 records need the \
                      extension .bin, .f32 or .raw)",
                     number + 1
                 )
@@ -221,7 +293,7 @@ pub fn read(path: &Path) -> Result<Sample> {
         if t.is_empty() || t.starts_with('#') {
             continue;
         }
-        let v = grammar::parse_vector(text)
+        let v = parse(text)
             .map_err(|e| anyhow::anyhow!("{name}: line {number}: {e}: {}", grammar::quote(text)))?;
         r.offer(v);
     }
@@ -247,19 +319,22 @@ fn progress(len: u64, what: &str) -> indicatif::ProgressBar {
 }
 
 /// A glTF asset's `NORMAL` attributes: each mesh primitive's accessor index, in mesh
-/// order, and each such accessor's vectors, read once however many primitives share it.
+/// order, and each such accessor's vectors, read once however many primitives share it;
+/// and the same of each primitive's `TANGENT`, where it has one.
 pub(super) struct GltfNormals {
     pub primitives: Vec<usize>,
     pub accessors: std::collections::BTreeMap<usize, Vec<[f32; 3]>>,
+    pub tangents: Vec<Option<usize>>,
+    pub tangent_accessors: std::collections::BTreeMap<usize, Vec<[f32; 4]>>,
 }
 
-/// Every mesh primitive's `NORMAL` of a glTF asset: float, or normalized `BYTE`/`SHORT`
-/// read as glTF's rule `max(c/M, -1)` (`KHR_mesh_quantization`); sparse accessors with
-/// their substitutions applied. The JSON is read without the crate's validation, which
+/// Every mesh primitive's `NORMAL` (and `TANGENT`) of a glTF asset: float, or normalized
+/// `BYTE`/`SHORT` read as glTF's rule `max(c/M, -1)` (`KHR_mesh_quantization`); sparse
+/// accessors with their substitutions applied. The JSON is read without the crate's validation, which
 /// refuses the extensions it does not know (the quantization among them) even where only
 /// the attributes matter.
 pub(super) fn gltf_normals(path: &Path, bytes: &[u8]) -> Result<GltfNormals> {
-    use gltf::accessor::{DataType, Dimensions, Iter};
+    use std::collections::btree_map::Entry::Vacant;
     let name = path.display();
     // The crate's validation checks every index and enum, which its readers then trust;
     // of its complaints the extensions it does not know and the data it misses (glTF lets
@@ -315,54 +390,40 @@ pub(super) fn gltf_normals(path: &Path, bytes: &[u8]) -> Result<GltfNormals> {
     let mut out = GltfNormals {
         primitives: Vec::new(),
         accessors: Default::default(),
+        tangents: Vec::new(),
+        tangent_accessors: Default::default(),
     };
     for mesh in gltf.meshes() {
         for (k, prim) in mesh.primitives().enumerate() {
             let Some(a) = prim.get(&gltf::Semantic::Normals) else {
                 continue;
             };
-            out.primitives.push(a.index());
-            if out.accessors.contains_key(&a.index()) {
-                continue;
-            }
-            let at = format!(
-                "{name}: mesh {} primitive {k}: NORMAL (accessor {})",
-                mesh.index(),
-                a.index()
-            );
-            if a.dimensions() != Dimensions::Vec3 {
-                bail!("{at} is {:?}, not VEC3", a.dimensions());
-            }
-            // A sparse accessor without a buffer view is its count of zeros plus its
-            // substitutions: bounded here, where a count alone could claim gigabytes.
-            if a.view().is_none() && a.count() > MAX_ELEMENTS {
-                bail!(
-                    "{at} claims {} elements, more than {MAX_ELEMENTS}",
-                    a.count()
-                );
-            }
-            if a.view().is_none() && a.sparse().is_none() {
-                bail!("{at} has no buffer view: all its normals are zero, which have no direction");
-            }
-            let short = || format!("{at} points outside its buffer");
-            let vs: Vec<[f32; 3]> = match (a.data_type(), a.normalized()) {
-                (DataType::F32, _) => Iter::<[f32; 3]>::new(a.clone(), data)
-                    .with_context(short)?
-                    .collect(),
-                (DataType::I8, true) => Iter::<[i8; 3]>::new(a.clone(), data)
-                    .with_context(short)?
-                    .map(|v| v.map(|c| (f32::from(c) / 127.0).max(-1.0)))
-                    .collect(),
-                (DataType::I16, true) => Iter::<[i16; 3]>::new(a.clone(), data)
-                    .with_context(short)?
-                    .map(|v| v.map(|c| (f32::from(c) / 32767.0).max(-1.0)))
-                    .collect(),
-                (t, n) => bail!(
-                    "{at} is {t:?}{}: glTF's NORMAL is FLOAT, or normalized BYTE or SHORT with KHR_mesh_quantization",
-                    if n { " normalized" } else { "" }
-                ),
+            let at = |what: &str, a: &gltf::Accessor| {
+                format!(
+                    "{name}: mesh {} primitive {k}: {what} (accessor {})",
+                    mesh.index(),
+                    a.index()
+                )
             };
-            out.accessors.insert(a.index(), vs);
+            out.primitives.push(a.index());
+            if let Vacant(slot) = out.accessors.entry(a.index()) {
+                slot.insert(accessor::<3>(&a, data, &at("NORMAL", &a))?);
+            }
+            let t = prim.get(&gltf::Semantic::Tangents);
+            if let Some(t) = &t {
+                if t.count() != a.count() {
+                    bail!(
+                        "{} has {} elements, its NORMAL {}",
+                        at("TANGENT", t),
+                        t.count(),
+                        a.count()
+                    );
+                }
+                if let Vacant(slot) = out.tangent_accessors.entry(t.index()) {
+                    slot.insert(accessor::<4>(t, data, &at("TANGENT", t))?);
+                }
+            }
+            out.tangents.push(t.map(|t| t.index()));
         }
     }
     if out.primitives.is_empty() {
@@ -371,8 +432,60 @@ pub(super) fn gltf_normals(path: &Path, bytes: &[u8]) -> Result<GltfNormals> {
     Ok(out)
 }
 
-/// The most elements a NORMAL accessor without a buffer view may have (2^28, 3 GiB of
-/// floats).
+/// One `NORMAL` (`N` = 3) or `TANGENT` (`N` = 4) accessor's elements: float, or
+/// normalized `BYTE`/`SHORT` as glTF reads them, `max(c/M, -1)`.
+fn accessor<'a, 's, const N: usize>(
+    a: &gltf::Accessor<'a>,
+    data: impl Clone + Fn(gltf::Buffer<'a>) -> Option<&'s [u8]>,
+    at: &str,
+) -> Result<Vec<[f32; N]>>
+where
+    [f32; N]: gltf::accessor::Item,
+    [i8; N]: gltf::accessor::Item,
+    [i16; N]: gltf::accessor::Item,
+{
+    use gltf::accessor::{DataType, Dimensions, Iter};
+    let (dims, named) = if N == 3 {
+        (Dimensions::Vec3, "VEC3")
+    } else {
+        (Dimensions::Vec4, "VEC4")
+    };
+    if a.dimensions() != dims {
+        bail!("{at} is {:?}, not {named}", a.dimensions());
+    }
+    // A sparse accessor without a buffer view is its count of zeros plus its
+    // substitutions: bounded here, where a count alone could claim gigabytes.
+    if a.view().is_none() && a.count() > MAX_ELEMENTS {
+        bail!(
+            "{at} claims {} elements, more than {MAX_ELEMENTS}",
+            a.count()
+        );
+    }
+    if a.view().is_none() && a.sparse().is_none() {
+        bail!("{at} has no buffer view: all its elements are zero, which have no direction");
+    }
+    let short = || format!("{at} points outside its buffer");
+    Ok(match (a.data_type(), a.normalized()) {
+        (DataType::F32, _) => Iter::<[f32; N]>::new(a.clone(), data)
+            .with_context(short)?
+            .collect(),
+        (DataType::I8, true) => Iter::<[i8; N]>::new(a.clone(), data)
+            .with_context(short)?
+            .map(|v| v.map(|c| (f32::from(c) / 127.0).max(-1.0)))
+            .collect(),
+        (DataType::I16, true) => Iter::<[i16; N]>::new(a.clone(), data)
+            .with_context(short)?
+            .map(|v| v.map(|c| (f32::from(c) / 32767.0).max(-1.0)))
+            .collect(),
+        (t, n) => bail!(
+            "{at} is {t:?}{}: glTF's NORMAL and TANGENT are FLOAT, or normalized BYTE or SHORT with KHR_mesh_quantization",
+            if n { " normalized" } else { "" }
+        ),
+    })
+}
+
+/// The most elements a NORMAL or TANGENT accessor without a buffer view may have (2^28,
+/// 3 GiB of floats).
 const MAX_ELEMENTS: usize = 1 << 28;
 
 /// A buffer's bytes from its URI: a base64 `data:` URI, or a file beside the asset
@@ -440,6 +553,35 @@ pub fn remeasure(c: &Catalogue, keep: impl Fn(&Entry) -> bool, sample: &Sample) 
         samples: sample.vectors.len(),
         over: Some(sample.describe()),
         specs,
+        ..c.clone()
+    }
+}
+
+/// The catalogue with every tangent-frame spec re-measured over `sample` (angle errors and
+/// handedness flips); their ALU counts and engines are the catalogue's.
+pub fn remeasure_frames(c: &Catalogue, sample: &FrameSample) -> Catalogue {
+    let bar = progress(
+        c.frames.len() as u64,
+        "measuring each frame spec over the sample",
+    );
+    let frames = crate::support::par::map(&c.frames, |e| {
+        let spec: Spec = e.spec.parse().expect("the catalogue's ids are specs");
+        let st = crate::measure::quality::frames_over(&spec, &sample.vectors)
+            .expect("a tangent-frame spec");
+        bar.inc(1);
+        FrameEntry {
+            normal: st.normal,
+            tangent: st.tangent,
+            bitangent: st.bitangent,
+            flips: st.flips,
+            ..e.clone()
+        }
+    });
+    bar.finish_and_clear();
+    Catalogue {
+        frame_samples: sample.vectors.len(),
+        frames_over: Some(sample.describe()),
+        frames,
         ..c.clone()
     }
 }

@@ -238,26 +238,32 @@ pub fn measure_frames(spec: &Spec) -> Option<FrameStats> {
     if let Some(s) = FRAME_MEMO.get(&spec.id()) {
         return s;
     }
-    let stats = spec.family().frames().then(|| {
+    let stats = frames_over(spec, &reference_frames());
+    FRAME_MEMO.extend([(spec.id(), stats)]);
+    stats
+}
+
+/// A frame spec's figures over `frames` (`n`, `t` and the bitangent's sign each, as
+/// `encode` takes them: a user's sample), through its packed encoder and decoder; `None`
+/// for a vector spec.
+pub fn frames_over(spec: &Spec, frames: &[[f32; 7]]) -> Option<FrameStats> {
+    spec.family().frames().then(|| {
         let e = spec.emitted();
         let find = |r: Role| e.cpu_function(r).expect("frame function");
         let (enc, dec) = (find(Role::Encode), find(Role::Decode));
-        let frames = reference_frames();
         let input: Vec<u32> = frames.iter().flatten().map(|v| v.to_bits()).collect();
         let mut codes = vec![0u32; frames.len() * enc.out_words];
         enc.eval_many(&input, &mut codes);
         let mut out = vec![0u32; frames.len() * 7];
         dec.eval_many(&codes, &mut out);
         frame_stats(
-            &frames,
+            frames,
             out.chunks_exact(7).map(|o| {
                 let f = |i: usize| f64::from(f32::from_bits(o[i]));
                 ([f(0), f(1), f(2)], [f(3), f(4), f(5)], f(6))
             }),
         )
-    });
-    FRAME_MEMO.extend([(spec.id(), stats)]);
-    stats
+    })
 }
 
 /// `vs` through oct's fast encoder and its decoder at `bits` bits (any even size, the

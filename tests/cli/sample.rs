@@ -243,9 +243,26 @@ fn bad_samples_name_the_line_or_record() {
         let err = fails(&["choose", "--bits", "16", "--sample", file], "");
         assert!(err.contains(want), "{file}: {err}");
     }
-    let good = write("good.txt", b"0 0 1\n");
-    let err = fails(&["choose", "--use", "frame", "--sample", &good], "");
-    assert!(err.contains("--sample holds vectors"), "{err}");
+    // Frames: seven numbers a line, 28 bytes a record, a normal map none.
+    let frame_cases = [
+        (
+            write("vectors.txt", b"0 0 1\n"),
+            "line 1: expected seven numbers",
+        ),
+        (
+            write("short.f32", &[0u8; 40]),
+            "ends 12 bytes into record 2",
+        ),
+        (
+            write("along.txt", b"0 0 1 0 0 2 1\n"),
+            "holds no frame with a direction",
+        ),
+        (write("map.png", b"not read"), "a normal map holds normals"),
+    ];
+    for (file, want) in &frame_cases {
+        let err = fails(&["choose", "--use", "frame", "--sample", file], "");
+        assert!(err.contains(want), "{file}: {err}");
+    }
     // Zero and NaN vectors among good ones are left out and counted.
     let some = write("some.txt", b"0 0 1\n0 0 0\n1 0 0\n");
     let t = ok(&["choose", "--bits", "16", "--sample", &some]).stdout;
@@ -333,4 +350,184 @@ fn a_gltf_assets_normals_are_its_sample() {
         "",
     );
     assert!(err.contains("no mesh primitive with a NORMAL"), "{err}");
+}
+
+/// `n` seeded tangent frames as `encode` reads them: a direction for the normal, a
+/// tangent made orthogonal to it in f64, and signs alternating.
+fn seeded_frames(n: usize) -> Vec<[f32; 7]> {
+    let ns = seeded(n, 7);
+    let others = seeded(n, 8);
+    ns.iter()
+        .zip(&others)
+        .enumerate()
+        .map(|(i, (a, b))| {
+            let [a, b] = [a, b].map(|v| v.map(f64::from));
+            let d: f64 =
+                (0..3).map(|k| a[k] * b[k]).sum::<f64>() / (0..3).map(|k| a[k] * a[k]).sum::<f64>();
+            let t = [0, 1, 2].map(|k| b[k] - d * a[k]);
+            let w = if i % 2 == 0 { 1.0 } else { -1.0 };
+            [a[0], a[1], a[2], t[0], t[1], t[2], w].map(|x| x as f32)
+        })
+        .collect()
+}
+
+fn frame_text(fs: &[[f32; 7]]) -> String {
+    fs.iter()
+        .map(|f| f.map(|x| x.to_string()).join(" ") + "\n")
+        .collect()
+}
+
+/// The figures of `spec` over `frames`, from `encode` and `decode` of them: the normal,
+/// the tangent made orthogonal to it and the bitangent `cross(n, t)·sign`, each angle
+/// in f64, `[mean, max]`, and the frames whose sign changed.
+fn frame_figures(spec: &str, frames: &[[f32; 7]]) -> ([[f64; 2]; 3], usize) {
+    let codes = ok_stdin(&["encode", spec], &frame_text(frames)).stdout;
+    let decoded = ok_stdin(&["decode", spec], &codes).stdout;
+    let unit = |v: [f64; 3]| {
+        let l = v.iter().map(|x| x * x).sum::<f64>().sqrt();
+        v.map(|x| x / l)
+    };
+    let cross = |a: [f64; 3], b: [f64; 3]| {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    };
+    let angle = |a: [f64; 3], b: [f64; 3]| {
+        let (a, b) = (unit(a), unit(b));
+        (a[0] * b[0] + a[1] * b[1] + a[2] * b[2])
+            .clamp(-1.0, 1.0)
+            .acos()
+            .to_degrees()
+    };
+    let (mut sum, mut max, mut flips) = ([0f64; 3], [0f64; 3], 0);
+    for (f, line) in frames.iter().zip(decoded.lines()) {
+        let g: Vec<f64> = line
+            .split(' ')
+            .map(|x| f64::from(x.parse::<f32>().unwrap()))
+            .collect();
+        let x = f.map(f64::from);
+        let n = unit([x[0], x[1], x[2]]);
+        let d: f64 = (0..3).map(|k| x[3 + k] * n[k]).sum();
+        let t = unit([0, 1, 2].map(|k| x[3 + k] - d * n[k]));
+        let s = if x[6] < 0.0 { -1.0 } else { 1.0 };
+        let (n2, t2, s2) = ([g[0], g[1], g[2]], [g[3], g[4], g[5]], g[6]);
+        let b = cross(n, t).map(|c| c * s);
+        let b2 = cross(n2, t2).map(|c| c * s2);
+        for (k, (u, v)) in [(n, n2), (t, t2), (b, b2)].into_iter().enumerate() {
+            let a = angle(u, v);
+            sum[k] += a;
+            max[k] = max[k].max(a);
+        }
+        flips += usize::from(s2 != s);
+    }
+    let m = frames.len() as f64;
+    ([0, 1, 2].map(|k| [sum[k] / m, max[k]]), flips)
+}
+
+/// `choose --use frame --sample`: a glTF asset's primitives with NORMAL and TANGENT are
+/// its frames (a primitive without TANGENT is not, a frame whose tangent has no direction
+/// is left out and counted); each frame spec's figures are its round trip over them, the
+/// same as over the frames written as text; a normal map has no frames.
+#[test]
+fn a_gltf_assets_tangent_frames_rank_the_frame_specs() {
+    let dir = tempdir();
+    let d = dir.path();
+    let mut frames = seeded_frames(300);
+    let normals_only = seeded(20, 5);
+    // Frame 7's tangent is zero: left out.
+    let mut stored = frames.clone();
+    stored[7][3..6].copy_from_slice(&[0.0; 3]);
+    frames.remove(7);
+    let mut bin: Vec<u8> = Vec::new();
+    for f in &stored {
+        bin.extend(f[..3].iter().flat_map(|x| x.to_le_bytes()));
+    }
+    for f in &stored {
+        bin.extend(f[3..].iter().flat_map(|x| x.to_le_bytes()));
+    }
+    bin.extend(binary(&normals_only));
+    let (nb, tb) = (300 * 12, 300 * 16);
+    let gltf = serde_json::json!({
+        "asset": {"version": "2.0"},
+        "buffers": [{"uri": "frames.bin", "byteLength": bin.len()}],
+        "bufferViews": [
+            {"buffer": 0, "byteLength": nb},
+            {"buffer": 0, "byteOffset": nb, "byteLength": tb},
+            {"buffer": 0, "byteOffset": nb + tb, "byteLength": 240}
+        ],
+        "accessors": [
+            {"bufferView": 0, "componentType": 5126, "count": 300, "type": "VEC3"},
+            {"bufferView": 1, "componentType": 5126, "count": 300, "type": "VEC4"},
+            {"bufferView": 2, "componentType": 5126, "count": 20, "type": "VEC3"}
+        ],
+        "meshes": [{"primitives": [
+            {"attributes": {"NORMAL": 0, "TANGENT": 1}},
+            {"attributes": {"NORMAL": 2}}
+        ]}]
+    });
+    std::fs::write(d.join("frames.bin"), &bin).unwrap();
+    std::fs::write(d.join("frames.gltf"), gltf.to_string()).unwrap();
+    std::fs::write(d.join("frames.txt"), frame_text(&frames)).unwrap();
+    let asset = d.join("frames.gltf");
+    let asset = asset.to_str().unwrap();
+    let rows = chosen(&["--use", "frame", "--sample", asset]);
+    assert!(rows.len() >= 5, "{rows:?}");
+    for r in &rows {
+        let spec = r["spec"].as_str().unwrap();
+        let (want, flips) = frame_figures(spec, &frames);
+        for (k, key) in ["normal", "tangent", "bitangent"].into_iter().enumerate() {
+            for (i, w) in want[k].iter().enumerate() {
+                let got = r[key][i].as_f64().unwrap();
+                assert!(
+                    (got - w).abs() <= 1e-9 * w.max(1.0),
+                    "{spec} {key}[{i}]: {got} over the asset, {w} from encode and decode"
+                );
+            }
+        }
+        assert_eq!(r["flips"].as_u64(), Some(flips as u64), "{spec}");
+    }
+    let text = d.join("frames.txt");
+    assert_eq!(
+        rows,
+        chosen(&["--use", "frame", "--sample", text.to_str().unwrap()])
+    );
+    let table = ok(&["choose", "--use", "frame", "--sample", asset]).stdout;
+    let head = format!(
+        "errors over the 299 frames of {asset}, 0 of them repeats of an earlier one (each \
+         counted); 1 frames with a zero, NaN or infinite normal or tangent, or a tangent \
+         along the normal, left out"
+    );
+    assert!(table.starts_with(&head), "{table}");
+    assert!(
+        table.contains(&format!("angle error over {}", &head[12..])),
+        "{table}"
+    );
+    // A normal map, and an asset without TANGENT, hold no frames.
+    std::fs::write(
+        d.join("normals.gltf"),
+        serde_json::json!({
+            "asset": {"version": "2.0"},
+            "buffers": [{"uri": "frames.bin", "byteLength": bin.len()}],
+            "bufferViews": [{"buffer": 0, "byteLength": nb}],
+            "accessors": [{"bufferView": 0, "componentType": 5126, "count": 300, "type": "VEC3"}],
+            "meshes": [{"primitives": [{"attributes": {"NORMAL": 0}}]}]
+        })
+        .to_string(),
+    )
+    .unwrap();
+    let r = run(&[
+        "choose",
+        "--use",
+        "frame",
+        "--sample",
+        d.join("normals.gltf").to_str().unwrap(),
+    ]);
+    assert_eq!(r.code, 2, "{r:?}");
+    assert!(
+        r.stderr
+            .contains("no mesh primitive with both NORMAL and TANGENT"),
+        "{r:?}"
+    );
 }
