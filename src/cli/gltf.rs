@@ -1,4 +1,5 @@
-//! `gltf IN OUT --normals SPEC`: a glTF asset with its normals encoded by a spec.
+//! `gltf IN OUT --normals SPEC --tangents FRAME_SPEC`: a glTF asset with its normals, or
+//! its tangent frames, or both, encoded by specs.
 //!
 //! With `gltf_normal8` or `gltf_normal16` (glTF's own quantization) each mesh primitive's
 //! `NORMAL` becomes a normalized `BYTE` or `SHORT` accessor of the codes, 4-byte aligned
@@ -7,7 +8,8 @@
 //! attribute `_UNITPACK_<ID>` beside the original `NORMAL` (glTF allows custom attributes
 //! whose names start with `_`; they may not be `UNSIGNED_INT`, so a code's 32-bit words
 //! are stored as pairs of `UNSIGNED_SHORT`, `VEC2` for one word and `VEC4` for two), for
-//! a renderer that decodes with the emitted functions.
+//! a renderer that decodes with the emitted functions. A frame spec (`--tangents`) takes
+//! each primitive's `NORMAL` and `TANGENT` together and writes its codes the same way.
 //!
 //! Everything else is kept: the new codes are appended (to the GLB's `BIN` chunk, or as
 //! a new buffer in a `data:` URI for a `.gltf`), accessors and buffer views are only
@@ -24,6 +26,7 @@ use crate::codecs::functions::function::Role;
 use crate::support::atomic::write_atomic_with;
 use anyhow::{Context, Result, bail};
 use serde_json::{Value, json};
+use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
 
 /// glTF's component types.
@@ -148,8 +151,60 @@ fn array<'a>(v: &'a mut Value, key: &str) -> Result<&'a mut Vec<Value>> {
         .with_context(|| format!("the glTF's {key} is not an array"))
 }
 
+/// The new bytes: each accessor's codes, 4-byte aligned, in one new buffer, or after the
+/// GLB's BIN chunk where it has one that buffer 0 holds.
+struct Appended {
+    buffer: usize,
+    base: usize,
+    data: Vec<u8>,
+}
+
+impl Appended {
+    /// Appends `codes` (`count` items of `words` words) as a new buffer view and accessor
+    /// stored as `store` says; returns the accessor's index.
+    fn push(
+        &mut self,
+        doc: &mut Value,
+        codes: &[u32],
+        count: usize,
+        words: usize,
+        store: &Storage,
+    ) -> Result<usize> {
+        self.data.resize(self.data.len().next_multiple_of(4), 0);
+        let offset = self.base + self.data.len();
+        self.data.extend(codes.iter().flat_map(|w| w.to_le_bytes()));
+        let views = array(doc, "bufferViews")?;
+        views.push(json!({
+            "buffer": self.buffer,
+            "byteOffset": offset,
+            "byteLength": codes.len() * 4,
+            "byteStride": words * 4,
+            "target": ARRAY_BUFFER,
+        }));
+        let view = views.len() - 1;
+        let accessors = array(doc, "accessors")?;
+        let mut a = json!({
+            "bufferView": view,
+            "componentType": store.component_type,
+            "count": count,
+            "type": store.kind,
+        });
+        if store.normalized {
+            a["normalized"] = json!(true);
+        }
+        accessors.push(a);
+        Ok(accessors.len() - 1)
+    }
+}
+
 /// Rewrites IN to OUT (see the module) and says what it did and the error over the asset.
-pub fn run(input: &Path, out: &Path, normals: &str, force: bool) -> Result<String> {
+pub fn run(
+    input: &Path,
+    out: &Path,
+    normals: Option<&str>,
+    tangents: Option<&str>,
+    force: bool,
+) -> Result<String> {
     let name = input.display().to_string();
     let ext = |p: &Path| {
         p.extension()
@@ -192,12 +247,37 @@ pub fn run(input: &Path, out: &Path, normals: &str, force: bool) -> Result<Strin
             );
         }
     }
-    let spec: Spec = normals.parse()?;
-    if spec.info().domain.is_none() || spec.family().frames() {
+    let normals: Option<Spec> = normals.map(str::parse).transpose()?;
+    if let Some(spec) = &normals
+        && (spec.info().domain.is_none() || spec.family().frames())
+    {
         bail!("--normals takes a vector codec spec; {spec} is not one");
+    }
+    let tangents: Option<Spec> = tangents.map(str::parse).transpose()?;
+    if let Some(spec) = &tangents
+        && !spec.family().frames()
+    {
+        bail!(
+            "--tangents takes a tangent-frame spec (`unitpack choose --use frame` lists them); \
+             {spec} is not one"
+        );
+    }
+    if normals.is_none() && tangents.is_none() {
+        bail!("name --normals SPEC, --tangents SPEC or both");
     }
     let bytes = std::fs::read(input).with_context(|| format!("cannot read {name}"))?;
     let found = gltf_normals(input, &bytes)?;
+    let pairs: BTreeSet<(usize, usize)> = found
+        .primitives
+        .iter()
+        .zip(&found.tangents)
+        .filter_map(|(&n, t)| Some((n, (*t)?)))
+        .collect();
+    if tangents.is_some() && pairs.is_empty() {
+        bail!(
+            "{name} has no mesh primitive with both NORMAL and TANGENT: no tangent frames to encode"
+        );
+    }
     let (json_bytes, mut bin) = if glb {
         let g = read_glb(&bytes, &name)?;
         (g.json, g.bin)
@@ -206,69 +286,82 @@ pub fn run(input: &Path, out: &Path, normals: &str, force: bool) -> Result<Strin
     };
     let mut doc: Value =
         serde_json::from_slice(&json_bytes).with_context(|| format!("{name}: its JSON"))?;
-    let e = spec.emitted();
-    let enc = e.cpu_function(Role::Encode).expect("a codec encodes");
-    let store = storage(&spec, enc.out_words)?;
+    // A spec's functions, and how its codes are stored.
+    let encoder = |spec: &Spec| {
+        let e = spec.emitted();
+        let words = e
+            .cpu_function(Role::Encode)
+            .expect("a codec encodes")
+            .out_words;
+        storage(spec, words).map(|s| (e, s))
+    };
+    let normals = normals.map(|s| encoder(&s).map(|e| (s, e))).transpose()?;
+    let tangents = tangents.map(|s| encoder(&s).map(|e| (s, e))).transpose()?;
 
-    // The new bytes: each NORMAL accessor's codes, 4-byte aligned, in one new buffer, or
-    // after the GLB's BIN chunk where it has one that buffer 0 holds.
     let buffers = array(&mut doc, "buffers")?;
     let into_bin = glb && bin.is_some() && buffers.first().is_some_and(|b| b.get("uri").is_none());
-    let (buffer, base) = if into_bin {
-        (0, bin.as_ref().map_or(0, Vec::len).next_multiple_of(4))
-    } else {
-        (buffers.len(), 0)
-    };
-    let mut data: Vec<u8> = Vec::new();
-    let mut replaced = std::collections::BTreeMap::new();
-    let mut all = Vec::new();
-    for (&accessor, vs) in &found.accessors {
-        let input: Vec<u32> = vs.iter().flat_map(|v| v.map(f32::to_bits)).collect();
-        let mut codes = vec![0u32; vs.len() * enc.out_words];
-        enc.eval_many(&input, &mut codes);
-        data.resize(data.len().next_multiple_of(4), 0);
-        let offset = base + data.len();
-        data.extend(codes.iter().flat_map(|w| w.to_le_bytes()));
-        let views = array(&mut doc, "bufferViews")?;
-        views.push(json!({
-            "buffer": buffer,
-            "byteOffset": offset,
-            "byteLength": codes.len() * 4,
-            "byteStride": enc.out_words * 4,
-            "target": ARRAY_BUFFER,
-        }));
-        let view = views.len() - 1;
-        let accessors = array(&mut doc, "accessors")?;
-        let mut a = json!({
-            "bufferView": view,
-            "componentType": store.component_type,
-            "count": vs.len(),
-            "type": store.kind,
-        });
-        if store.normalized {
-            a["normalized"] = json!(true);
+    let mut added = if into_bin {
+        Appended {
+            buffer: 0,
+            base: bin.as_ref().map_or(0, Vec::len).next_multiple_of(4),
+            data: Vec::new(),
         }
-        accessors.push(a);
-        replaced.insert(accessor, accessors.len() - 1);
-        all.extend_from_slice(vs);
+    } else {
+        Appended {
+            buffer: buffers.len(),
+            base: 0,
+            data: Vec::new(),
+        }
+    };
+    // NORMAL accessor → its codes' accessor.
+    let mut replaced = BTreeMap::new();
+    let mut all_normals = Vec::new();
+    if let Some((_, (e, store))) = &normals {
+        let enc = e.cpu_function(Role::Encode).expect("a codec encodes");
+        for (&accessor, vs) in &found.accessors {
+            let input: Vec<u32> = vs.iter().flat_map(|v| v.map(f32::to_bits)).collect();
+            let mut codes = vec![0u32; vs.len() * enc.out_words];
+            enc.eval_many(&input, &mut codes);
+            let new = added.push(&mut doc, &codes, vs.len(), enc.out_words, store)?;
+            replaced.insert(accessor, new);
+            all_normals.extend_from_slice(vs);
+        }
     }
-    // The buffer that holds them.
+    // (NORMAL, TANGENT) accessors → the frame codes' accessor.
+    let mut framed = BTreeMap::new();
+    let mut all_frames = Vec::new();
+    if let Some((_, (e, store))) = &tangents {
+        let enc = e.cpu_function(Role::Encode).expect("a codec encodes");
+        for &(n, t) in &pairs {
+            let frames: Vec<[f32; 7]> = found.accessors[&n]
+                .iter()
+                .zip(&found.tangent_accessors[&t])
+                .map(|(n, t)| [n[0], n[1], n[2], t[0], t[1], t[2], t[3]])
+                .collect();
+            let input: Vec<u32> = frames.iter().flat_map(|f| f.map(f32::to_bits)).collect();
+            let mut codes = vec![0u32; frames.len() * enc.out_words];
+            enc.eval_many(&input, &mut codes);
+            let new = added.push(&mut doc, &codes, frames.len(), enc.out_words, store)?;
+            framed.insert((n, t), new);
+            all_frames.extend(frames);
+        }
+    }
     let buffers = array(&mut doc, "buffers")?;
     if into_bin {
         let b = bin.as_mut().expect("a BIN chunk");
-        b.resize(base, 0);
-        b.extend(&data);
+        b.resize(added.base, 0);
+        b.extend(&added.data);
         buffers[0]["byteLength"] = json!(b.len());
     } else {
         use base64::Engine;
         let uri = format!(
             "data:application/octet-stream;base64,{}",
-            base64::engine::general_purpose::STANDARD.encode(&data)
+            base64::engine::general_purpose::STANDARD.encode(&added.data)
         );
-        buffers.push(json!({ "byteLength": data.len(), "uri": uri }));
+        buffers.push(json!({ "byteLength": added.data.len(), "uri": uri }));
     }
-    // Every primitive's attribute.
-    let mut primitives = 0;
+    // Every primitive's attributes, by the accessors it named before any was replaced.
+    let (mut with_normals, mut with_frames) = (0, 0);
     for mesh in array(&mut doc, "meshes")? {
         let Some(prims) = mesh.get_mut("primitives").and_then(Value::as_array_mut) else {
             continue;
@@ -277,18 +370,25 @@ pub fn run(input: &Path, out: &Path, normals: &str, force: bool) -> Result<Strin
             let Some(attrs) = p.get_mut("attributes").and_then(Value::as_object_mut) else {
                 continue;
             };
-            let Some(&new) = attrs
-                .get("NORMAL")
-                .and_then(Value::as_u64)
-                .and_then(|i| replaced.get(&(i as usize)))
-            else {
-                continue;
-            };
-            attrs.insert(store.attribute.clone(), json!(new));
-            primitives += 1;
+            let index = |key: &str| attrs.get(key).and_then(Value::as_u64).map(|i| i as usize);
+            let (n, t) = (index("NORMAL"), index("TANGENT"));
+            let frame = n.zip(t).and_then(|nt| framed.get(&nt));
+            if let (Some((_, (_, store))), Some(&new)) = (&tangents, frame) {
+                attrs.insert(store.attribute.clone(), json!(new));
+                with_frames += 1;
+            }
+            if let (Some((_, (_, store))), Some(&new)) =
+                (&normals, n.and_then(|n| replaced.get(&n)))
+            {
+                attrs.insert(store.attribute.clone(), json!(new));
+                with_normals += 1;
+            }
         }
     }
-    if store.attribute == "NORMAL" {
+    if normals
+        .as_ref()
+        .is_some_and(|(_, (_, store))| store.attribute == "NORMAL")
+    {
         for key in ["extensionsUsed", "extensionsRequired"] {
             let list = array(&mut doc, key)?;
             if !list.iter().any(|x| x == QUANTIZATION) {
@@ -304,15 +404,34 @@ pub fn run(input: &Path, out: &Path, normals: &str, force: bool) -> Result<Strin
         s.into_bytes()
     };
     write_atomic_with(out, &bytes, force)?;
+    let mut text = format!("wrote {}\n", out.display());
+    if let Some((spec, (_, store))) = &normals {
+        let accessors = found.accessors.len();
+        text += &normals_said(spec, store, &all_normals, accessors, with_normals);
+    }
+    if let Some((spec, (_, store))) = &tangents {
+        text += &frames_said(spec, store, &all_frames, pairs.len(), with_frames);
+    }
+    Ok(text)
+}
+
+/// What `--normals` did: how the normals are stored, and their error over the asset.
+fn normals_said(
+    spec: &Spec,
+    store: &Storage,
+    all: &[[f32; 3]],
+    accessors: usize,
+    primitives: usize,
+) -> String {
     // Zero, NaN and infinite normals have no direction to measure against: encoded (to
     // the spec's documented code) but left out of the figures, and counted.
     let measured: Vec<[f32; 3]> = all
         .iter()
         .copied()
-        .filter(|v| v.iter().all(|x| x.is_finite()) && v.iter().any(|&x| x != 0.0))
+        .filter(super::sample::measurable)
         .collect();
     let left_out = all.len() - measured.len();
-    let figures = match crate::measure::quality::errors_over(&spec, &measured) {
+    let figures = match crate::measure::quality::errors_over(spec, &measured) {
         Some((stats, p99)) if !measured.is_empty() => format!(
             "error over the asset's {} normals with a direction: mean {:.5}°, p99 {p99:.5}°, \
              max {:.5}° (the round trip of each; a sample maximum, not a bound){}",
@@ -342,11 +461,57 @@ pub fn run(input: &Path, out: &Path, normals: &str, force: bool) -> Result<Strin
             store.attribute, store.kind
         )
     };
-    Ok(format!(
-        "wrote {}: {} normals of {} accessors ({primitives} primitives) encoded as {spec}, \
+    format!(
+        "{} normals of {accessors} accessors ({primitives} primitives) encoded as {spec}, \
          {how}\n{figures}\n",
-        out.display(),
         all.len(),
-        found.accessors.len(),
-    ))
+    )
+}
+
+/// What `--tangents` did: how the frames are stored, and their errors over the asset.
+fn frames_said(
+    spec: &Spec,
+    store: &Storage,
+    all: &[[f32; 7]],
+    pairs: usize,
+    primitives: usize,
+) -> String {
+    let measured: Vec<[f32; 7]> = all
+        .iter()
+        .copied()
+        .filter(super::sample::measurable)
+        .collect();
+    let left_out = all.len() - measured.len();
+    let figures = match crate::measure::quality::frames_over(spec, &measured) {
+        Some(st) if !measured.is_empty() => {
+            let pair = |[mean, max]: [f64; 2]| format!("{mean:.5}° / {max:.5}°");
+            format!(
+                "error over the asset's {} frames with a direction, mean / max: normal {}, \
+                 tangent {}, bitangent {}, handedness flips {} (a sample maximum, not a \
+                 bound){}",
+                measured.len(),
+                pair(st.normal),
+                pair(st.tangent),
+                pair(st.bitangent),
+                st.flips,
+                if left_out > 0 {
+                    format!(
+                        "; {left_out} frames with a zero, NaN or infinite normal or tangent, \
+                         or a tangent along the normal, left out"
+                    )
+                } else {
+                    String::new()
+                }
+            )
+        }
+        _ => format!("no frame of the asset has a direction ({left_out} left out)"),
+    };
+    format!(
+        "{} tangent frames of {pairs} NORMAL and TANGENT accessor pairs ({primitives} \
+         primitives) encoded as {spec}, attribute {} ({} UNSIGNED_SHORT), NORMAL and \
+         TANGENT kept\n{figures}\n",
+        all.len(),
+        store.attribute,
+        store.kind
+    )
 }

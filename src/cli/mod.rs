@@ -203,7 +203,7 @@ pub enum Command {
         #[arg(long)]
         force: bool,
     },
-    /// Rewrite a glTF asset's normals with a spec: IN and OUT are both .gltf or both .glb.
+    /// Rewrite a glTF asset's normals and tangent frames with specs: IN and OUT are both .gltf or both .glb.
     ///
     /// With gltf_normal8 or gltf_normal16 every mesh primitive's NORMAL becomes a normalized
     /// BYTE or SHORT accessor (KHR_mesh_quantization, declared used and required): any
@@ -211,7 +211,9 @@ pub enum Command {
     /// _UNITPACK_<ID> (UNSIGNED_SHORT VEC2 for a 32-bit code, VEC4 for 64 bits) beside the
     /// original NORMAL, for a renderer that decodes with the emitted functions. Everything
     /// else is kept; the codes are appended (to the GLB's BIN chunk, or as a data: URI
-    /// buffer), and the error over the asset's normals is printed. OUT is written
+    /// buffer), and the error over the asset's normals is printed. --tangents FRAME_SPEC
+    /// encodes each primitive's NORMAL and TANGENT as tangent frames into _UNITPACK_<ID>
+    /// the same way, both attributes kept, and prints their errors. OUT is written
     /// atomically, beside IN for a .gltf (its buffers and images are relative paths); an
     /// existing OUT is replaced only with --force.
     Gltf {
@@ -222,8 +224,12 @@ pub enum Command {
         #[arg(value_name = "OUT")]
         output: PathBuf,
         /// The vector spec the normals are encoded with.
-        #[arg(long, value_name = "SPEC", required = true)]
-        normals: String,
+        #[arg(long, value_name = "SPEC", required_unless_present = "tangents")]
+        normals: Option<String>,
+        /// The tangent-frame spec each primitive's NORMAL and TANGENT are encoded with,
+        /// as a new attribute _UNITPACK_<ID> beside them.
+        #[arg(long, value_name = "SPEC")]
+        tangents: Option<String>,
         /// Replace an existing OUT (read-only too).
         #[arg(long)]
         force: bool,
@@ -438,9 +444,16 @@ pub fn run(cli: Cli) -> Result<i32> {
             input,
             output,
             normals,
+            tangents,
             force,
         } => {
-            output::print(&gltf::run(&input, &output, &normals, force)?)?;
+            output::print(&gltf::run(
+                &input,
+                &output,
+                normals.as_deref(),
+                tangents.as_deref(),
+                force,
+            )?)?;
             Ok(0)
         }
         Command::ConvertNormalMap {

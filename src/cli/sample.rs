@@ -87,6 +87,15 @@ impl<const N: usize> Sample<N> {
     }
 }
 
+/// Whether a vector (`N` = 3), or a frame's normal and tangent (`N` = 7), each have a
+/// direction to measure an error against: finite, not zero, and the tangent not along
+/// the normal.
+pub(super) fn measurable<const N: usize>(v: &[f32; N]) -> bool {
+    let finite = v.iter().all(|x| x.is_finite());
+    let zero = |c: &[f32]| c.iter().all(|&x| x == 0.0);
+    finite && !zero(&v[..3]) && (N != 7 || !zero(&v[3..6]) && !along(&v[..6]))
+}
+
 /// Whether a frame's tangent lies along its normal (`[n, t]`): no bitangent, so no angle
 /// to measure it by.
 fn along(nt: &[f32]) -> bool {
@@ -114,10 +123,7 @@ impl<const N: usize> Reservoir<N> {
     }
 
     fn offer(&mut self, v: [f32; N]) {
-        // A vector, and a frame's normal and tangent, each need a direction.
-        let finite = v.iter().all(|x| x.is_finite());
-        let zero = |c: &[f32]| c.iter().all(|&x| x == 0.0);
-        if !finite || zero(&v[..3]) || N == 7 && (zero(&v[3..6]) || along(&v[..6])) {
+        if !measurable(&v) {
             self.left_out += 1;
             return;
         }

@@ -342,6 +342,131 @@ fn another_spec_writes_a_custom_attribute_of_encodes_codes() {
     }
 }
 
+/// `--tangents SPEC`: each primitive's NORMAL and TANGENT, as frames, go to
+/// `_UNITPACK_<ID>` as `encode` writes their codes, beside both attributes (and beside
+/// `--normals`' own attribute when both are asked); the asset validates; the errors over
+/// its frames are printed.
+#[test]
+fn tangents_write_the_frame_codes_of_encode() {
+    let dir = tempdir();
+    let d = dir.path();
+    let ns = normals(45, 0xbeef);
+    // A unit tangent orthogonal to each normal (f64, then f32), signs alternating.
+    let others = normals(45, 0xcafe);
+    let frames: Vec<[f32; 7]> = ns
+        .iter()
+        .zip(&others)
+        .enumerate()
+        .map(|(i, (n, o))| {
+            let [n, o] = [n, o].map(|v| v.map(f64::from));
+            let d: f64 = (0..3).map(|k| n[k] * o[k]).sum();
+            let t = [0, 1, 2].map(|k| o[k] - d * n[k]);
+            let l = t.iter().map(|x| x * x).sum::<f64>().sqrt();
+            let w = if i % 2 == 0 { 1.0 } else { -1.0 };
+            [n[0], n[1], n[2], t[0] / l, t[1] / l, t[2] / l, w].map(|x| x as f32)
+        })
+        .collect();
+    std::fs::write(d.join("tex.png"), tiny_png()).unwrap();
+    let mut input = asset(&ns, None);
+    let base = buffer(&ns);
+    let tangent_bytes: Vec<u8> = frames
+        .iter()
+        .flat_map(|f| f[3..].iter().flat_map(|x| x.to_le_bytes()))
+        .collect();
+    input["buffers"][0]["byteLength"] = json!(base.len() + tangent_bytes.len());
+    input["bufferViews"]
+        .as_array_mut()
+        .unwrap()
+        .push(json!({"buffer": 0, "byteOffset": base.len(), "byteLength": tangent_bytes.len(), "target": 34962}));
+    input["accessors"]
+        .as_array_mut()
+        .unwrap()
+        .push(json!({"bufferView": 2, "componentType": 5126, "count": 45, "type": "VEC4"}));
+    input["meshes"][0]["primitives"][0]["attributes"]["TANGENT"] = json!(2);
+    std::fs::write(
+        d.join("mesh.glb"),
+        glb(&input, &[base, tangent_bytes].concat()),
+    )
+    .unwrap();
+    let codes = run_bytes(
+        &[
+            "encode",
+            "qtangent64",
+            "--input-format",
+            "binary",
+            "--output-format",
+            "binary",
+        ],
+        &frames
+            .iter()
+            .flat_map(|f| f.iter().flat_map(|x| x.to_le_bytes()))
+            .collect::<Vec<u8>>(),
+    );
+    assert_eq!(codes.code, 0, "{codes:?}");
+    for args in [
+        &["--tangents", "qtangent64"][..],
+        &["--normals", "gltf_normal16", "--tangents", "qtangent64"],
+    ] {
+        let r = run_in(
+            Some(d),
+            &[&["gltf", "mesh.glb", "out.glb", "--force"][..], args].concat(),
+            "",
+        );
+        assert_eq!(r.code, 0, "{r:?}");
+        assert!(
+            r.stdout.contains(
+                "45 tangent frames of 1 NORMAL and TANGENT accessor pairs (1 primitives) \
+                 encoded as qtangent64, attribute _UNITPACK_QTANGENT64 (VEC4 UNSIGNED_SHORT)"
+            ) && r
+                .stdout
+                .contains("error over the asset's 45 frames with a direction, mean / max: normal"),
+            "{r:?}"
+        );
+        let (json, bin) = read_glb(&std::fs::read(d.join("out.glb")).unwrap());
+        kept(&input, &json);
+        let attrs = &json["meshes"][0]["primitives"][0]["attributes"];
+        assert_eq!(attrs["TANGENT"], json!(2), "TANGENT stays");
+        let a = &json["accessors"][attrs["_UNITPACK_QTANGENT64"].as_u64().unwrap() as usize];
+        assert_eq!(
+            (a["componentType"].as_u64(), a["type"].as_str()),
+            (Some(5123), Some("VEC4"))
+        );
+        let view = &json["bufferViews"][a["bufferView"].as_u64().unwrap() as usize];
+        let got: Vec<u8> = elements(&bin, view, a, 8).concat();
+        assert_eq!(got, codes.out, "the attribute holds encode's frame codes");
+        if args.len() == 4 {
+            assert_ne!(attrs["NORMAL"], json!(1), "NORMAL quantized as well");
+        } else {
+            assert_eq!(attrs["NORMAL"], json!(1), "NORMAL stays");
+        }
+        let (errors, warnings, messages) = validate(&[&d.join("out.glb")]).remove(0);
+        assert_eq!((errors, warnings), (0, 0), "{args:?}: {messages}");
+    }
+    // A vector spec is not a frame spec, and an asset without TANGENT has no frames.
+    let r = run_in(
+        Some(d),
+        &["gltf", "mesh.glb", "x.glb", "--tangents", "oct16"],
+        "",
+    );
+    assert!(
+        r.code == 2 && r.stderr.contains("--tangents takes a tangent-frame spec"),
+        "{r:?}"
+    );
+    std::fs::write(d.join("plain.glb"), glb(&asset(&ns, None), &buffer(&ns))).unwrap();
+    let r = run_in(
+        Some(d),
+        &["gltf", "plain.glb", "x.glb", "--tangents", "qtangent64"],
+        "",
+    );
+    assert!(
+        r.code == 2
+            && r.stderr
+                .contains("no mesh primitive with both NORMAL and TANGENT"),
+        "{r:?}"
+    );
+    assert!(!d.join("x.glb").exists());
+}
+
 #[test]
 fn gltf_refuses_what_it_cannot_write_and_loses_nothing() {
     let dir = tempdir();
