@@ -13,6 +13,11 @@
 //! figures say so; on a terminal a progress bar shows the bytes read, then the specs
 //! measured. Zero, NaN and infinite vectors have no direction to measure against;
 //! they are left out and counted.
+//!
+//! `choose --use frame --sample FILE` reads tangent frames instead ([`read_frames`]): a
+//! glTF primitive's `NORMAL` and `TANGENT` paired element by element, or `encode`'s frame
+//! records (seven numbers). A frame is left out where its normal or tangent has no
+//! direction, or its tangent lies along its normal (no bitangent to measure).
 
 use super::grammar;
 use crate::choice::catalogue::{Catalogue, Entry, FrameEntry};
@@ -141,9 +146,14 @@ impl<const N: usize> Reservoir<N> {
     fn finish(self, name: &str) -> Result<Sample<N>> {
         if self.kept.is_empty() {
             bail!(
-                "{name} holds no {} with a direction ({} zero, NaN or infinite)",
+                "{name} holds no {} with a direction ({} {})",
                 if N == 3 { "vector" } else { "frame" },
-                self.left_out
+                self.left_out,
+                if N == 3 {
+                    "zero, NaN or infinite"
+                } else {
+                    "with a zero, NaN or infinite normal or tangent, or a tangent along the normal"
+                }
             );
         }
         Ok(Sample {

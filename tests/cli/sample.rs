@@ -255,7 +255,8 @@ fn bad_samples_name_the_line_or_record() {
         ),
         (
             write("along.txt", b"0 0 1 0 0 2 1\n"),
-            "holds no frame with a direction",
+            "holds no frame with a direction (1 with a zero, NaN or infinite normal or \
+             tangent, or a tangent along the normal)",
         ),
         (write("map.png", b"not read"), "a normal map holds normals"),
     ];
