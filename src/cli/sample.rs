@@ -168,17 +168,10 @@ impl<const N: usize> Reservoir<N> {
 /// Reads FILE's vectors (see the module).
 pub fn read(path: &Path) -> Result<Sample> {
     let (name, ext) = name_and_extension(path);
-    let mut r = Reservoir::new();
     if ext == "gltf" || ext == "glb" {
-        let bytes = std::fs::read(path).with_context(|| format!("cannot read {name}"))?;
-        let normals = gltf_normals(path, &bytes)?;
-        for a in &normals.primitives {
-            for &v in &normals.accessors[a] {
-                r.offer(v);
-            }
-        }
-        return r.finish(&name);
+        return gltf_reservoirs(path, &name)?.0.finish(&name);
     }
+    let mut r = Reservoir::new();
     if ext == "png" {
         let image = png_file::read(path)?;
         for v in super::convert::conventional_vectors(&image, path)? {
@@ -194,31 +187,65 @@ pub fn read(path: &Path) -> Result<Sample> {
 /// (text lines `nx ny nz tx ty tz w`, or raw records of seven little-endian `f32`).
 pub fn read_frames(path: &Path) -> Result<FrameSample> {
     let (name, ext) = name_and_extension(path);
-    let mut r = Reservoir::new();
     if ext == "gltf" || ext == "glb" {
-        let bytes = std::fs::read(path).with_context(|| format!("cannot read {name}"))?;
-        let g = gltf_normals(path, &bytes)?;
-        let mut any = false;
-        for (n, t) in g.primitives.iter().zip(&g.tangents) {
-            let Some(t) = t else { continue };
-            any = true;
-            for (n, t) in g.accessors[n].iter().zip(&g.tangent_accessors[t]) {
-                r.offer([n[0], n[1], n[2], t[0], t[1], t[2], t[3]]);
-            }
-        }
-        if !any {
-            bail!(
-                "{name} has no mesh primitive with both NORMAL and TANGENT: its tangent frames cannot be sampled"
-            );
-        }
-        return r.finish(&name);
+        return match gltf_reservoirs(path, &name)?.1 {
+            Some(frames) => frames.finish(&name),
+            None => Err(no_tangents(&name)),
+        };
     }
     if ext == "png" {
         bail!(
             "{name}: a normal map holds normals, not tangent frames; --use frame samples a glTF asset's NORMAL and TANGENT, or frames as `encode` reads them"
         );
     }
-    read_stream(path, r, grammar::parse_frame)
+    read_stream(path, Reservoir::new(), grammar::parse_frame)
+}
+
+/// FILE's vectors and, for a glTF asset with tangent frames, its frames from the same read
+/// (`report --sample`, whose pages rank both). The second part's error says why the
+/// frames' figures stay the seeded ones: the file holds no frame, or none with a direction.
+pub fn read_with_frames(path: &Path) -> Result<(Sample, Result<FrameSample>)> {
+    let (name, ext) = name_and_extension(path);
+    if ext == "gltf" || ext == "glb" {
+        let (vectors, frames) = gltf_reservoirs(path, &name)?;
+        let frames = match frames {
+            Some(frames) => frames.finish(&name),
+            None => Err(no_tangents(&name)),
+        };
+        return Ok((vectors.finish(&name)?, frames));
+    }
+    let frames = anyhow::anyhow!(
+        "{name} is not a glTF asset, whose NORMAL and TANGENT are the only tangent frames a sample of vectors comes with"
+    );
+    Ok((read(path)?, Err(frames)))
+}
+
+/// A glTF asset's normals (every primitive's `NORMAL`, in order) and its tangent frames
+/// (each primitive's `NORMAL` and `TANGENT` paired), `None` where no primitive has
+/// `TANGENT`.
+fn gltf_reservoirs(path: &Path, name: &str) -> Result<(Reservoir<3>, Option<Reservoir<7>>)> {
+    let bytes = std::fs::read(path).with_context(|| format!("cannot read {name}"))?;
+    let g = gltf_normals(path, &bytes)?;
+    let (mut vectors, mut frames) = (Reservoir::new(), None);
+    for (n, t) in g.primitives.iter().zip(&g.tangents) {
+        for &v in &g.accessors[n] {
+            vectors.offer(v);
+        }
+        if let Some(t) = t {
+            let r = frames.get_or_insert_with(Reservoir::new);
+            for (n, t) in g.accessors[n].iter().zip(&g.tangent_accessors[t]) {
+                r.offer([n[0], n[1], n[2], t[0], t[1], t[2], t[3]]);
+            }
+        }
+    }
+    Ok((vectors, frames))
+}
+
+/// An asset without tangent frames, in words.
+fn no_tangents(name: &str) -> anyhow::Error {
+    anyhow::anyhow!(
+        "{name} has no mesh primitive with both NORMAL and TANGENT: its tangent frames cannot be sampled"
+    )
 }
 
 /// The file's name as the user gave it, and its extension in lower case.

@@ -20,6 +20,7 @@ pub mod maps;
 
 use crate::choice::catalogue::{Catalogue, Entry};
 use crate::choice::filtering::{self, DECIDING_SEPARATION, FilterStats};
+use crate::choice::recommend::{Case, Winner};
 use crate::codecs::{FAMILIES, Spec};
 use crate::emit::Lang;
 use crate::emit::lang::printer;
@@ -313,12 +314,23 @@ fn png(px: (u32, u32, Vec<u8>)) -> Result<Vec<u8>> {
     crate::support::png_file::encode(px.0, px.1, png::ColorType::Rgb, png::BitDepth::Eight, &px.2)
 }
 
-/// Every file of the report, with `progress` told of each spec measured; `density`, a
-/// user's sample whose figures the catalogue holds ([`Catalogue::over`]), adds its
-/// density maps.
+/// A user's sample as the report shows it beside the figures the catalogue holds over it
+/// ([`Catalogue::over`], [`Catalogue::frames_over`]): the file, where its vectors lie,
+/// and why the frame figures stay the seeded ones where they do.
+pub struct UserSample {
+    /// The file as the user named it: the pages' `choose` commands name it.
+    pub file: String,
+    /// Its vectors' density maps, beside each spec's error maps.
+    pub density: maps::Density,
+    /// Why its frames are not measured (it holds none), in words.
+    pub frames_seeded: Option<String>,
+}
+
+/// Every file of the report, with `progress` told of each spec measured; `sample`, a
+/// user's sample whose figures the catalogue holds, adds its density maps and names it.
 pub fn render(
     catalogue: &Catalogue,
-    density: Option<&maps::Density>,
+    sample: Option<&UserSample>,
     progress: &(dyn Fn() + Sync),
 ) -> Result<Files> {
     let specs: Vec<Spec> = catalogue
@@ -349,7 +361,7 @@ pub fn render(
         include_bytes!("../../templates/report/table.js").to_vec(),
     );
     files.insert("maps/legend.png".into(), png(maps::legend(256, 12))?);
-    if let Some(d) = density {
+    if let Some(d) = sample.map(|s| &s.density) {
         files.insert(
             "maps/sample_equirect.png".into(),
             png(maps::density_pixels(d, &d.equirect, SCALE))?,
@@ -419,7 +431,7 @@ pub fn render(
             oct_w: maps::OCTAHEDRAL * SCALE * SHOWN,
             scale_lo: charts::tick(maps::SCALE_DEGREES.0),
             scale_hi: charts::tick(maps::SCALE_DEGREES.1),
-            sample: density.and(catalogue.over.clone()),
+            sample: sample.and(catalogue.over.clone()),
             specs,
         };
         files.insert(
@@ -430,14 +442,36 @@ pub fn render(
         );
     }
     let winners = crate::choice::recommend::winners(catalogue);
+    // A pick's command names the sample where its figures are over it, so that running it
+    // gives the same answer.
+    let picked = |c: &Case, w: Option<&Winner>| {
+        let over = match c.query.use_case {
+            Some(crate::choice::query::Use::Frame) => catalogue.frames_over.is_some(),
+            _ => catalogue.over.is_some(),
+        };
+        pick_rows(c, w, sample.filter(|_| over).map(|s| s.file.as_str()))
+    };
+    let frames_over = match (&catalogue.frames_over, sample) {
+        (Some(over), _) => over.clone(),
+        (
+            None,
+            Some(UserSample {
+                frames_seeded: Some(why),
+                ..
+            }),
+        ) => format!(
+            "{} seeded orthonormal frames, not over the sample: {why}",
+            catalogue.frame_samples
+        ),
+        (None, _) => format!("{} seeded orthonormal frames", catalogue.frame_samples),
+    };
     let frames = FramesPage {
         intro: format!(
             "Each tangent-frame spec stores a normal, a tangent and the bitangent's sign. \
-             Errors are the angle between each decoded vector and its reference over {} \
-             seeded orthonormal frames, mean and sample maximum (not a bound), in degrees; \
-             a flip is a frame whose handedness changed. ALU: the packed encoder and \
-             decoder. Engine: the engine that reads these bits as they are.",
-            catalogue.frame_samples
+             Errors are the angle between each decoded vector and its reference over \
+             {frames_over}, mean and sample maximum (not a bound), in degrees; a flip is a \
+             frame whose handedness changed. ALU: the packed encoder and decoder. Engine: \
+             the engine that reads these bits as they are."
         ),
         ranking_note: "Frames are encoded offline and decoded per vertex: choose --use frame \
              ranks them by the worst sample max of normal, tangent and bitangent × (1 + \
@@ -446,7 +480,7 @@ pub fn render(
         picks: winners
             .iter()
             .filter(|(c, _)| c.query.use_case == Some(crate::choice::query::Use::Frame))
-            .flat_map(|(c, w)| pick_rows(c, w.as_ref()))
+            .flat_map(|(c, w)| picked(c, w.as_ref()))
             .collect(),
         rows: catalogue.frames.iter().map(frame_row).collect(),
     };
@@ -483,7 +517,7 @@ pub fn render(
         ),
         picks: winners
             .iter()
-            .flat_map(|(c, w)| pick_rows(c, w.as_ref()))
+            .flat_map(|(c, w)| picked(c, w.as_ref()))
             .collect(),
         intro: format!(
             "Every spec of the catalogue: round-trip angular error of the packed code over \
@@ -516,13 +550,14 @@ pub fn render(
 }
 
 /// A case's two rows in a table of picks: the first choice and, under it, why.
-fn pick_rows(
-    case: &crate::choice::recommend::Case,
-    w: Option<&crate::choice::recommend::Winner>,
-) -> Vec<String> {
+fn pick_rows(case: &Case, w: Option<&Winner>, sample: Option<&str>) -> Vec<String> {
+    let mut args = case.args();
+    if let Some(file) = sample {
+        args.extend(["--sample".to_string(), shell_word(file)]);
+    }
     let command = format!(
         "<td><code>unitpack choose {}</code></td>",
-        escape(&case.args().join(" "))
+        escape(&args.join(" "))
     );
     let Some(w) = w else {
         return vec![format!(
@@ -549,6 +584,17 @@ fn pick_rows(
             escape(&w.why)
         ),
     ]
+}
+
+/// `word` as a POSIX shell reads it back: as it is where it holds only characters no
+/// shell treats specially, else single-quoted.
+fn shell_word(word: &str) -> String {
+    let plain = |c: char| c.is_ascii_alphanumeric() || "_./-+=:,@%".contains(c);
+    if !word.is_empty() && word.chars().all(plain) {
+        word.to_string()
+    } else {
+        format!("'{}'", word.replace('\'', "'\\''"))
+    }
 }
 
 /// The frames page's row of a frame spec.

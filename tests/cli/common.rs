@@ -424,6 +424,23 @@ pub fn chosen(args: &[&str]) -> Vec<serde_json::Value> {
         .clone()
 }
 
+/// The `data-value` attributes of a report row's cells, in order.
+pub fn values(row: &str) -> Vec<String> {
+    row.split("data-value=\"")
+        .skip(1)
+        .map(|s| s.split('"').next().unwrap().to_string())
+        .collect()
+}
+
+/// The cell values of frame spec `id`'s row on a report's frames page.
+pub fn frame_row_values(page: &str, id: &str) -> Vec<String> {
+    let row = page
+        .lines()
+        .find(|l| l.starts_with(&format!("<tr id=\"{id}\"")))
+        .unwrap_or_else(|| panic!("{id} on the frames page"));
+    values(row)
+}
+
 /// A GLB of `json` and the BIN chunk `bin`, each padded to 4 bytes as the container asks.
 pub fn glb(json: &serde_json::Value, bin: &[u8]) -> Vec<u8> {
     let mut j = json.to_string().into_bytes();

@@ -27,14 +27,6 @@ fn page(rel: &str) -> String {
         .unwrap_or_else(|e| panic!("the report has {rel}: {e}"))
 }
 
-/// The `data-value` attributes of a row's cells, in order.
-fn values(row: &str) -> Vec<String> {
-    row.split("data-value=\"")
-        .skip(1)
-        .map(|s| s.split('"').next().unwrap().to_string())
-        .collect()
-}
-
 #[test]
 fn the_report_has_an_index_and_a_page_per_family_with_maps_and_charts() {
     let dir = report().join("report");
@@ -263,11 +255,7 @@ fn the_report_picks_by_use_and_ranks_frames() {
     let list: Value = serde_json::from_str(&ok(&["list", "--json"]).stdout).unwrap();
     for f in list["frames"].as_array().unwrap() {
         let id = f["spec"].as_str().unwrap();
-        let row = frames
-            .lines()
-            .find(|l| l.starts_with(&format!("<tr id=\"{id}\"")))
-            .unwrap_or_else(|| panic!("{id} on the frames page"));
-        let v = values(row);
+        let v = frame_row_values(&frames, id);
         assert_eq!(
             v[0].parse::<f64>().unwrap(),
             f["bits"].as_f64().unwrap(),
@@ -490,6 +478,26 @@ fn a_report_over_a_sample_shows_its_figures_and_where_it_lies() {
             "{id} max"
         );
     }
+    // A pick's command names the sample its figures are over, and gives the same first
+    // choice; a stream of vectors has no tangent frames, whose figures stay seeded.
+    let args = ["--use", "gbuffer", "--bits", "32", "--sample", f];
+    let first = &crate::common::chosen(&args)[0]["spec"];
+    let pick = index
+        .lines()
+        .find(|l| l.contains(&format!("<code>unitpack choose {}</code>", args.join(" "))))
+        .unwrap_or_else(|| panic!("a pick for {args:?}"));
+    assert!(pick.contains(&format!("data-spec={first}")), "{pick}");
+    let frames = std::fs::read_to_string(out.join("frames.html")).unwrap();
+    assert!(
+        frames.contains(&format!(
+            "seeded orthonormal frames, not over the sample: {f} is not a glTF asset"
+        )),
+        "{frames}"
+    );
+    assert!(
+        frames.contains("<code>unitpack choose --use frame --bits 64</code>"),
+        "{frames}"
+    );
     let oct = std::fs::read_to_string(out.join("family/oct.html")).unwrap();
     assert!(oct.contains("maps/sample_equirect.png") && oct.contains("Where your sample lies"));
     assert!(oct.contains("99th percentile"), "the percentile row");

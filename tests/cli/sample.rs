@@ -505,6 +505,34 @@ fn a_gltf_assets_tangent_frames_rank_the_frame_specs() {
         table.contains(&format!("angle error over {}", &head[12..])),
         "{table}"
     );
+    // The report over the asset: every frame spec's row of the frames page is its row
+    // here, the frames are named, and a frame pick is the first choice of its command,
+    // which names the sample.
+    let out = d.join("report");
+    ok(&["report", "--out", out.to_str().unwrap(), "--sample", asset]);
+    let page = std::fs::read_to_string(out.join("frames.html")).unwrap();
+    assert!(page.contains(&format!("over {},", &head[12..])), "{page}");
+    for r in &rows {
+        let id = r["spec"].as_str().unwrap();
+        let v = frame_row_values(&page, id);
+        for (k, key) in ["normal", "tangent", "bitangent"].into_iter().enumerate() {
+            for i in 0..2 {
+                assert_eq!(
+                    v[1 + 2 * k + i].parse::<f64>().unwrap(),
+                    r[key][i].as_f64().unwrap(),
+                    "{id} {key}[{i}]"
+                );
+            }
+        }
+        assert_eq!(v[7].parse::<u64>().ok(), r["flips"].as_u64(), "{id}");
+    }
+    let args = ["--use", "frame", "--bits", "64", "--sample", asset];
+    let first = &chosen(&args)[0]["spec"];
+    let pick = page
+        .lines()
+        .find(|l| l.contains(&format!("<code>unitpack choose {}</code>", args.join(" "))))
+        .unwrap_or_else(|| panic!("a pick for {args:?}"));
+    assert!(pick.contains(&format!("data-spec={first}")), "{pick}");
     // A normal map, and an asset without TANGENT, hold no frames.
     std::fs::write(
         d.join("normals.gltf"),
