@@ -139,171 +139,565 @@ static inline unitpack_vec2 unitpack_draco_oct14_round_codes_v(unitpack_vec3 v) 
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
     const bool sum_below_16 = sum < 16.0f;
     const bool ok = sum >= 2.0f && sum_below_16;
-    const unitpack_vec3 w = {
-        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
-        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
-        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
+    const unitpack_vec3 t1 = {
+        fabsf(ok ? scaled.x : 2.0f),
+        fabsf(ok ? scaled.y : 0.0f),
+        fabsf(ok ? scaled.z : 0.0f)
     };
-    const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
-    const bool t1 = ok && fabsf(v.x) + fabsf(v.y) + fabsf(v.z) >= 1.0000001e-6f;
-    const unitpack_vec3 magnitude = { fabsf(w2.x), fabsf(w2.y), fabsf(w2.z) };
-    const float l1 = magnitude.x + magnitude.y + magnitude.z;
-    const float fixed2 = magnitude.x * 4096.0f;
-    const float floor_fixed2 = floorf(fixed2);
-    const float fixed_rest = (fixed2 - floor_fixed2) * 65536.0f;
-    const float floor_fixed_rest = floorf(fixed_rest);
-    const uint32_t t2 = (uint32_t)floorf((fixed_rest - floor_fixed_rest) * 65536.0f);
-    const uint32_t floor_fixed_rest_u = (uint32_t)floor_fixed_rest;
-    const uint32_t floor_fixed2_u = (uint32_t)floor_fixed2;
-    const float fixed3 = magnitude.y * 4096.0f;
-    const float floor_fixed3 = floorf(fixed3);
-    const float fixed_rest2 = (fixed3 - floor_fixed3) * 65536.0f;
-    const float floor_fixed_rest2 = floorf(fixed_rest2);
-    const uint32_t t3 = (uint32_t)floorf((fixed_rest2 - floor_fixed_rest2) * 65536.0f);
-    const uint32_t floor_fixed_rest2_u = (uint32_t)floor_fixed_rest2;
-    const uint32_t floor_fixed3_u = (uint32_t)floor_fixed3;
-    const float fixed4 = magnitude.z * 4096.0f;
-    const float floor_fixed4 = floorf(fixed4);
-    const float fixed_rest3 = (fixed4 - floor_fixed4) * 65536.0f;
-    const float floor_fixed_rest3 = floorf(fixed_rest3);
-    const uint32_t t4 = t2 + t3 + (uint32_t)floorf((fixed_rest3 - floor_fixed_rest3) * 65536.0f);
-    const uint32_t t5 = floor_fixed_rest_u
-        + floor_fixed_rest2_u
-        + (uint32_t)floor_fixed_rest3
-        + (t4 >> 16u);
-    const uint32_t t6 = floor_fixed2_u + floor_fixed3_u + (uint32_t)floor_fixed4 + (t5 >> 16u);
-    const uint32_t t7 = t4 & 0xffffu;
-    const uint32_t t8 = t5 & 0xffffu;
-    const float t9 = nearbyintf(magnitude.x / l1 * 8191.0f);
-    const float estimate = t9 <= 8191.0f ? t9 : 8191.0f;
-    const uint32_t estimate_u = (uint32_t)estimate;
-    const uint32_t t10 = t2 * 0x3ffeu;
-    const uint32_t t11 = floor_fixed_rest_u * 0x3ffeu + (t10 >> 16u);
-    const uint32_t t12 = floor_fixed2_u * 0x3ffeu + (t11 >> 16u);
-    const uint32_t t13 = t10 & 0xffffu;
-    const uint32_t t14 = t11 & 0xffffu;
-    const uint32_t t15 = t12 & 0xffffu;
-    const uint32_t t16 = t12 >> 16u;
-    const uint32_t t17 = estimate_u + estimate_u + 1u;
-    const uint32_t t18 = t7 * t17;
-    const uint32_t t19 = t8 * t17 + (t18 >> 16u);
-    const uint32_t t20 = t6 * t17 + (t19 >> 16u);
-    const uint32_t t21 = t18 & 0xffffu;
-    const uint32_t t22 = t19 & 0xffffu;
-    const uint32_t t23 = t20 & 0xffffu;
-    const uint32_t t24 = t20 >> 16u;
-    const uint32_t t25 = estimate_u + estimate_u - 1u;
-    const uint32_t t26 = t7 * t25;
-    const uint32_t t27 = t8 * t25 + (t26 >> 16u);
-    const uint32_t t28 = t6 * t25 + (t27 >> 16u);
-    const uint32_t t29 = t26 & 0xffffu;
-    const uint32_t t30 = t27 & 0xffffu;
-    const uint32_t t31 = t28 & 0xffffu;
-    const uint32_t t32 = t28 >> 16u;
-    const bool t33 = w2.x < 0.0f;
-    const bool t34 = !(t14 < t22) && !(t22 < t14) && (t21 < t13 || !(t13 < t21));
-    const bool t35 = !(t15 < t23) && !(t23 < t15) && (t22 < t14 || t34);
-    const bool t36 = !(t16 < t24) && !(t24 < t16) && (t23 < t15 || t35);
-    const bool t37 = !(t14 < t22) && !(t22 < t14) && t21 < t13;
-    const bool t38 = !(t15 < t23) && !(t23 < t15) && (t22 < t14 || t37);
-    const bool t39 = !(t16 < t24) && !(t24 < t16) && (t23 < t15 || t38);
-    const bool t40 = ((t24 < t16 || t36) && !t33) || ((t24 < t16 || t39) && t33);
-    const bool t41 = !(t30 < t14) && !(t14 < t30) && t13 < t29;
-    const bool t42 = !(t31 < t15) && !(t15 < t31) && (t14 < t30 || t41);
-    const bool t43 = !(t32 < t16) && !(t16 < t32) && (t15 < t31 || t42);
-    const bool t44 = !(t30 < t14) && !(t14 < t30) && (t13 < t29 || !(t29 < t13));
-    const bool t45 = !(t31 < t15) && !(t15 < t31) && (t14 < t30 || t44);
-    const bool t46 = !(t32 < t16) && !(t16 < t32) && (t15 < t31 || t45);
-    const bool t47 = ((t16 < t32 || t43) && !t33) || ((t16 < t32 || t46) && t33);
-    const float t48 = estimate + (t40 ? 1.0f : 0.0f) - (estimate > 0.0f && t47 ? 1.0f : 0.0f);
-    const float i0 = t33 ? -t48 : t48;
-    const float t49 = nearbyintf(magnitude.y / l1 * 8191.0f);
-    const float estimate2 = t49 <= 8191.0f ? t49 : 8191.0f;
-    const uint32_t estimate2_u = (uint32_t)estimate2;
-    const uint32_t t50 = t3 * 0x3ffeu;
-    const uint32_t t51 = floor_fixed_rest2_u * 0x3ffeu + (t50 >> 16u);
-    const uint32_t t52 = floor_fixed3_u * 0x3ffeu + (t51 >> 16u);
-    const uint32_t t53 = t50 & 0xffffu;
-    const uint32_t t54 = t51 & 0xffffu;
-    const uint32_t t55 = t52 & 0xffffu;
-    const uint32_t t56 = t52 >> 16u;
-    const uint32_t t57 = estimate2_u + estimate2_u + 1u;
-    const uint32_t t58 = t7 * t57;
-    const uint32_t t59 = t8 * t57 + (t58 >> 16u);
-    const uint32_t t60 = t6 * t57 + (t59 >> 16u);
-    const uint32_t t61 = t58 & 0xffffu;
-    const uint32_t t62 = t59 & 0xffffu;
-    const uint32_t t63 = t60 & 0xffffu;
-    const uint32_t t64 = t60 >> 16u;
-    const uint32_t t65 = estimate2_u + estimate2_u - 1u;
-    const uint32_t t66 = t7 * t65;
-    const uint32_t t67 = t8 * t65 + (t66 >> 16u);
-    const uint32_t t68 = t6 * t65 + (t67 >> 16u);
-    const uint32_t t69 = t66 & 0xffffu;
-    const uint32_t t70 = t67 & 0xffffu;
-    const uint32_t t71 = t68 & 0xffffu;
-    const uint32_t t72 = t68 >> 16u;
-    const bool t73 = w2.y < 0.0f;
-    const bool t74 = !(t54 < t62) && !(t62 < t54) && (t61 < t53 || !(t53 < t61));
-    const bool t75 = !(t55 < t63) && !(t63 < t55) && (t62 < t54 || t74);
-    const bool t76 = !(t56 < t64) && !(t64 < t56) && (t63 < t55 || t75);
-    const bool t77 = !(t54 < t62) && !(t62 < t54) && t61 < t53;
-    const bool t78 = !(t55 < t63) && !(t63 < t55) && (t62 < t54 || t77);
-    const bool t79 = !(t56 < t64) && !(t64 < t56) && (t63 < t55 || t78);
-    const bool t80 = ((t64 < t56 || t76) && !t73) || ((t64 < t56 || t79) && t73);
-    const bool t81 = !(t70 < t54) && !(t54 < t70) && t53 < t69;
-    const bool t82 = !(t71 < t55) && !(t55 < t71) && (t54 < t70 || t81);
-    const bool t83 = !(t72 < t56) && !(t56 < t72) && (t55 < t71 || t82);
-    const bool t84 = !(t70 < t54) && !(t54 < t70) && (t53 < t69 || !(t69 < t53));
-    const bool t85 = !(t71 < t55) && !(t55 < t71) && (t54 < t70 || t84);
-    const bool t86 = !(t72 < t56) && !(t56 < t72) && (t55 < t71 || t85);
-    const bool t87 = ((t56 < t72 || t83) && !t73) || ((t56 < t72 || t86) && t73);
-    const float t88 = estimate2 + (t80 ? 1.0f : 0.0f);
-    const float t89 = estimate2 > 0.0f && t87 ? 1.0f : 0.0f;
-    const float t90 = t88 - t89;
-    const float neg_t90 = -t90;
-    const float i1 = t73 ? neg_t90 : t90;
-    const float t91 = 8191.0f - fabsf(i0);
-    const float abs_i1 = fabsf(i1);
-    const float i2 = t91 - abs_i1;
-    const float t92 = i1 > 0.0f ? i1 + i2 : i1 - i2;
-    const float t93 = -(i2 < 0.0f ? 0.0f : i2);
-    const bool t94 = i0 >= 0.0f;
-    const unitpack_vec2 t95 = {
-        w2.y < 0.0f ? neg_t90 : t88 - t89,
-        i2 < 0.0f ? 0.0f : t91 - abs_i1
+    const unitpack_vec3 draco_scaled = {
+        fabsf(t1.x) < 1.1754944e-38f ? 0.0f : t1.x,
+        fabsf(t1.y) < 1.1754944e-38f ? 0.0f : t1.y,
+        fabsf(t1.z) < 1.1754944e-38f ? 0.0f : t1.z
     };
-    const unitpack_vec2 t96 = { i2 < 0.0f ? t92 : t95.x, v.z < 0.0f ? t93 : t95.y };
-    const unitpack_vec2 t97 = {
-        i2 < 0.0f ? 0.0f : t91 - abs_i1,
-        w2.y < 0.0f ? neg_t90 : t88 - t89
+    const float draco_larger = draco_scaled.x >= draco_scaled.y ? draco_scaled.x : draco_scaled.y;
+    const uint32_t t2 = unitpack_bits_of(draco_larger) >> 23u;
+    const uint32_t t3 = t2 < 67u ? 67u : t2;
+    const float t4 = nearbyintf(
+        (draco_scaled.x <= draco_scaled.y ? draco_scaled.x : draco_scaled.y)
+            * unitpack_float_of((306u - t3) << 23u)
+    );
+    const float draco_smaller = t4 * unitpack_float_of((t3 - 52u) << 23u);
+    const float t5 = draco_larger * 8192.0f;
+    const float floor_t5 = floorf(t5);
+    const float t6 = (t5 - floor_t5) * 65536.0f;
+    const float floor_t6 = floorf(t6);
+    const float t7 = (t6 - floor_t6) * 65536.0f;
+    const float floor_t7 = floorf(t7);
+    const float t8 = (t7 - floor_t7) * 65536.0f;
+    const float floor_t8 = floorf(t8);
+    const float t9 = draco_smaller * 8192.0f;
+    const float floor_t9 = floorf(t9);
+    const float t10 = (t9 - floor_t9) * 65536.0f;
+    const float floor_t10 = floorf(t10);
+    const float t11 = (t10 - floor_t10) * 65536.0f;
+    const float floor_t11 = floorf(t11);
+    const float t12 = (t11 - floor_t11) * 65536.0f;
+    const float floor_t12 = floorf(t12);
+    const float t13 = draco_scaled.z * 8192.0f;
+    const float floor_t13 = floorf(t13);
+    const float t14 = (t13 - floor_t13) * 65536.0f;
+    const float floor_t14 = floorf(t14);
+    const float t15 = (t14 - floor_t14) * 65536.0f;
+    const float floor_t15 = floorf(t15);
+    const float t16 = (t15 - floor_t15) * 65536.0f;
+    const float floor_t16 = floorf(t16);
+    const bool t17 = t8 > floor_t8 || t12 > floor_t12 || t16 > floor_t16;
+    const uint32_t t18 = (uint32_t)floor_t8 + (uint32_t)floor_t12 + (uint32_t)floor_t16;
+    const uint32_t t19 = (uint32_t)floor_t7
+        + (uint32_t)floor_t11
+        + (uint32_t)floor_t15
+        + (t18 >> 16u);
+    const uint32_t t20 = t18 & 0xffffu;
+    const uint32_t t21 = (uint32_t)floor_t6
+        + (uint32_t)floor_t10
+        + (uint32_t)floor_t14
+        + (t19 >> 16u);
+    const uint32_t t22 = (uint32_t)floor_t5
+        + (uint32_t)floor_t9
+        + (uint32_t)floor_t13
+        + (t21 >> 16u);
+    const uint32_t t23 = t20 & 0xfffu;
+    const bool t24 = 0x800u < t23;
+    const bool t25 = !(t23 < 0x800u) && !t24 && (t17 || !(((t20 >> 12u) & 1u) < 1u));
+    const uint32_t t26 = t20 & 0x7ffu;
+    const bool t27 = 0x400u < t26;
+    const bool t28 = !(t26 < 0x400u) && !t27 && (t17 || !(((t20 >> 11u) & 1u) < 1u));
+    const uint32_t t29 = t20 & 0x3ffu;
+    const bool t30 = 0x200u < t29;
+    const bool t31 = !(t29 < 0x200u) && !t30 && (t17 || !(((t20 >> 10u) & 1u) < 1u));
+    const uint32_t t32 = !(t22 < 0x8000u)
+        ? (t20 & 0xfffff800u) + (t27 || t28 ? 0x800u : 0u)
+        : (t20 & 0xfffffc00u) + (t30 || t31 ? 0x400u : 0u);
+    const uint32_t t33 = !(t22 < 0x10000u)
+        ? (t20 & 0xfffff000u) + (t24 || t25 ? 0x1000u : 0u)
+        : t32;
+    const uint32_t t34 = (t19 & 0xffffu) + (t33 >> 16u);
+    const uint32_t t35 = (t21 & 0xffffu) + (t34 >> 16u);
+    const uint32_t t36 = t34 & 0xffffu;
+    const uint32_t t37 = t22 + (t35 >> 16u);
+    const uint32_t t38 = t35 & 0xffffu;
+    const uint32_t draco_sum = ((t33 & 0xffffu) >> 1u) | ((t36 & 1u) << 15u);
+    const uint32_t draco_sum2 = (t36 >> 1u) | ((t38 & 1u) << 15u);
+    const uint32_t draco_sum3 = (t38 >> 1u) | ((t37 & 1u) << 15u);
+    const uint32_t draco_sum4 = t37 >> 1u;
+    const uint32_t t39 = 255u - (unitpack_bits_of(scale) >> 23u);
+    const float t40 = (float)draco_sum4 * 281474980000000.0f;
+    const float t41 = (float)draco_sum3 * 4294967300.0f;
+    const float t42 = (float)draco_sum2 * 65536.0f;
+    const float draco_inverse = 1.0f / (t40 + t41 + t42);
+    const float t43 = floorf(5.902958e20f * draco_inverse) - 1.0f;
+    const uint32_t t44 = (uint32_t)(t43 >= 0.0f ? t43 : 0.0f);
+    const uint32_t t45 = draco_sum * t44;
+    const uint32_t t46 = draco_sum2 * t44 + (t45 >> 16u);
+    const uint32_t t47 = draco_sum3 * t44 + (t46 >> 16u);
+    const uint32_t t48 = draco_sum4 * t44 + (t47 >> 16u);
+    const uint32_t t49 = 0x10000u - (t45 & 0xffffu) - 0u;
+    const uint32_t t50 = t49 & 0xffffu;
+    const uint32_t t51 = 0x10000u - (t46 & 0xffffu) - (1u - (t49 >> 16u));
+    const uint32_t t52 = t51 & 0xffffu;
+    const uint32_t t53 = 0x10000u - (t47 & 0xffffu) - (1u - (t51 >> 16u));
+    const uint32_t t54 = t53 & 0xffffu;
+    const uint32_t t55 = 0x10000u - (t48 & 0xffffu) - (1u - (t53 >> 16u));
+    const uint32_t t56 = t55 & 0xffffu;
+    const uint32_t t57 = (0x10020u - (t48 >> 16u) - (1u - (t55 >> 16u))) & 0xffffu;
+    const bool t58 = !(t52 < draco_sum2) && !(draco_sum2 < t52) && !(t50 < draco_sum);
+    const bool t59 = !(t54 < draco_sum3) && !(draco_sum3 < t54) && (draco_sum2 < t52 || t58);
+    const bool t60 = !(t56 < draco_sum4) && !(draco_sum4 < t56) && (draco_sum3 < t54 || t59);
+    const bool t61 = !(t57 < 1u) || (draco_sum4 < t56 || t60);
+    const uint32_t t62 = t50 + 0x10000u - draco_sum - 0u;
+    const uint32_t t63 = t52 + 0x10000u - draco_sum2 - (1u - (t62 >> 16u));
+    const uint32_t t64 = t54 + 0x10000u - draco_sum3 - (1u - (t63 >> 16u));
+    const uint32_t t65 = t56 + 0x10000u - draco_sum4 - (1u - (t64 >> 16u));
+    const uint32_t t66 = t61 ? t62 & 0xffffu : t50;
+    const uint32_t t67 = t61 ? t63 & 0xffffu : t52;
+    const uint32_t t68 = t61 ? t64 & 0xffffu : t54;
+    const uint32_t t69 = t61 ? t65 & 0xffffu : t56;
+    const uint32_t t70 = t61 ? (t57 + 0x10000u - 0u - (1u - (t65 >> 16u))) & 0xffffu : t57;
+    const bool t71 = !(t67 < draco_sum2) && !(draco_sum2 < t67) && !(t66 < draco_sum);
+    const bool t72 = !(t68 < draco_sum3) && !(draco_sum3 < t68) && (draco_sum2 < t67 || t71);
+    const bool t73 = !(t69 < draco_sum4) && !(draco_sum4 < t69) && (draco_sum3 < t68 || t72);
+    const bool t74 = !(t70 < 1u) || (draco_sum4 < t69 || t73);
+    const uint32_t t75 = t66 + 0x10000u - draco_sum - 0u;
+    const uint32_t t76 = t67 + 0x10000u - draco_sum2 - (1u - (t75 >> 16u));
+    const uint32_t t77 = t68 + 0x10000u - draco_sum3 - (1u - (t76 >> 16u));
+    const uint32_t t78 = t74 ? t76 & 0xffffu : t67;
+    const uint32_t t79 = t74 ? t77 & 0xffffu : t68;
+    const uint32_t t80 = t74 ? (t69 + 0x10000u - draco_sum4 - (1u - (t77 >> 16u))) & 0xffffu : t69;
+    const uint32_t draco_digit = t44 + (t61 ? 1u : 0u) + (t74 ? 1u : 0u);
+    const float t81 = (float)t80 * 1.8446744e19f;
+    const float t82 = (float)t79 * 281474980000000.0f;
+    const float t83 = (float)t78 * 4294967300.0f;
+    const float t84 = floorf((t81 + t82 + t83) * draco_inverse) - 1.0f;
+    const uint32_t t85 = (uint32_t)(t84 >= 0.0f ? t84 : 0.0f);
+    const uint32_t t86 = draco_sum * t85;
+    const uint32_t t87 = draco_sum2 * t85 + (t86 >> 16u);
+    const uint32_t t88 = draco_sum3 * t85 + (t87 >> 16u);
+    const uint32_t t89 = draco_sum4 * t85 + (t88 >> 16u);
+    const uint32_t t90 = 0x10000u - (t86 & 0xffffu) - 0u;
+    const uint32_t t91 = t90 & 0xffffu;
+    const uint32_t t92 = (t74 ? t75 & 0xffffu : t66)
+        + 0x10000u
+        - (t87 & 0xffffu)
+        - (1u - (t90 >> 16u));
+    const uint32_t t93 = t92 & 0xffffu;
+    const uint32_t t94 = t78 + 0x10000u - (t88 & 0xffffu) - (1u - (t92 >> 16u));
+    const uint32_t t95 = t94 & 0xffffu;
+    const uint32_t t96 = t79 + 0x10000u - (t89 & 0xffffu) - (1u - (t94 >> 16u));
+    const uint32_t t97 = t96 & 0xffffu;
+    const uint32_t t98 = (t80 + 0x10000u - (t89 >> 16u) - (1u - (t96 >> 16u))) & 0xffffu;
+    const bool t99 = !(t93 < draco_sum2) && !(draco_sum2 < t93) && !(t91 < draco_sum);
+    const bool t100 = !(t95 < draco_sum3) && !(draco_sum3 < t95) && (draco_sum2 < t93 || t99);
+    const bool t101 = !(t97 < draco_sum4) && !(draco_sum4 < t97) && (draco_sum3 < t95 || t100);
+    const bool t102 = !(t98 < 1u) || (draco_sum4 < t97 || t101);
+    const uint32_t t103 = t91 + 0x10000u - draco_sum - 0u;
+    const uint32_t t104 = t93 + 0x10000u - draco_sum2 - (1u - (t103 >> 16u));
+    const uint32_t t105 = t95 + 0x10000u - draco_sum3 - (1u - (t104 >> 16u));
+    const uint32_t t106 = t97 + 0x10000u - draco_sum4 - (1u - (t105 >> 16u));
+    const uint32_t t107 = t102 ? t103 & 0xffffu : t91;
+    const uint32_t t108 = t102 ? t104 & 0xffffu : t93;
+    const uint32_t t109 = t102 ? t105 & 0xffffu : t95;
+    const uint32_t t110 = t102 ? t106 & 0xffffu : t97;
+    const uint32_t t111 = t102 ? (t98 + 0x10000u - 0u - (1u - (t106 >> 16u))) & 0xffffu : t98;
+    const bool t112 = !(t108 < draco_sum2) && !(draco_sum2 < t108) && !(t107 < draco_sum);
+    const bool t113 = !(t109 < draco_sum3) && !(draco_sum3 < t109) && (draco_sum2 < t108 || t112);
+    const bool t114 = !(t110 < draco_sum4) && !(draco_sum4 < t110) && (draco_sum3 < t109 || t113);
+    const bool t115 = !(t111 < 1u) || (draco_sum4 < t110 || t114);
+    const uint32_t t116 = t107 + 0x10000u - draco_sum - 0u;
+    const uint32_t t117 = t108 + 0x10000u - draco_sum2 - (1u - (t116 >> 16u));
+    const uint32_t t118 = t109 + 0x10000u - draco_sum3 - (1u - (t117 >> 16u));
+    const uint32_t t119 = t115 ? t117 & 0xffffu : t108;
+    const uint32_t t120 = t115 ? t118 & 0xffffu : t109;
+    const uint32_t t121 = t115
+        ? (t110 + 0x10000u - draco_sum4 - (1u - (t118 >> 16u))) & 0xffffu
+        : t110;
+    const uint32_t draco_digit2 = t85 + (t102 ? 1u : 0u) + (t115 ? 1u : 0u);
+    const float t122 = (float)t121 * 1.8446744e19f;
+    const float t123 = (float)t120 * 281474980000000.0f;
+    const float t124 = (float)t119 * 4294967300.0f;
+    const float t125 = floorf((t122 + t123 + t124) * draco_inverse) - 1.0f;
+    const uint32_t t126 = (uint32_t)(t125 >= 0.0f ? t125 : 0.0f);
+    const uint32_t t127 = draco_sum * t126;
+    const uint32_t t128 = draco_sum2 * t126 + (t127 >> 16u);
+    const uint32_t t129 = draco_sum3 * t126 + (t128 >> 16u);
+    const uint32_t t130 = draco_sum4 * t126 + (t129 >> 16u);
+    const uint32_t t131 = 0x10000u - (t127 & 0xffffu) - 0u;
+    const uint32_t t132 = t131 & 0xffffu;
+    const uint32_t t133 = (t115 ? t116 & 0xffffu : t107)
+        + 0x10000u
+        - (t128 & 0xffffu)
+        - (1u - (t131 >> 16u));
+    const uint32_t t134 = t133 & 0xffffu;
+    const uint32_t t135 = t119 + 0x10000u - (t129 & 0xffffu) - (1u - (t133 >> 16u));
+    const uint32_t t136 = t135 & 0xffffu;
+    const uint32_t t137 = t120 + 0x10000u - (t130 & 0xffffu) - (1u - (t135 >> 16u));
+    const uint32_t t138 = t137 & 0xffffu;
+    const uint32_t t139 = (t121 + 0x10000u - (t130 >> 16u) - (1u - (t137 >> 16u))) & 0xffffu;
+    const bool t140 = !(t134 < draco_sum2) && !(draco_sum2 < t134) && !(t132 < draco_sum);
+    const bool t141 = !(t136 < draco_sum3) && !(draco_sum3 < t136) && (draco_sum2 < t134 || t140);
+    const bool t142 = !(t138 < draco_sum4) && !(draco_sum4 < t138) && (draco_sum3 < t136 || t141);
+    const bool t143 = !(t139 < 1u) || (draco_sum4 < t138 || t142);
+    const uint32_t t144 = t132 + 0x10000u - draco_sum - 0u;
+    const uint32_t t145 = t134 + 0x10000u - draco_sum2 - (1u - (t144 >> 16u));
+    const uint32_t t146 = t136 + 0x10000u - draco_sum3 - (1u - (t145 >> 16u));
+    const uint32_t t147 = t138 + 0x10000u - draco_sum4 - (1u - (t146 >> 16u));
+    const uint32_t t148 = t143 ? t144 & 0xffffu : t132;
+    const uint32_t t149 = t143 ? t145 & 0xffffu : t134;
+    const uint32_t t150 = t143 ? t146 & 0xffffu : t136;
+    const uint32_t t151 = t143 ? t147 & 0xffffu : t138;
+    const uint32_t t152 = t143 ? (t139 + 0x10000u - 0u - (1u - (t147 >> 16u))) & 0xffffu : t139;
+    const bool t153 = !(t149 < draco_sum2) && !(draco_sum2 < t149) && !(t148 < draco_sum);
+    const bool t154 = !(t150 < draco_sum3) && !(draco_sum3 < t150) && (draco_sum2 < t149 || t153);
+    const bool t155 = !(t151 < draco_sum4) && !(draco_sum4 < t151) && (draco_sum3 < t150 || t154);
+    const bool t156 = !(t152 < 1u) || (draco_sum4 < t151 || t155);
+    const uint32_t t157 = t148 + 0x10000u - draco_sum - 0u;
+    const uint32_t t158 = t149 + 0x10000u - draco_sum2 - (1u - (t157 >> 16u));
+    const uint32_t t159 = t150 + 0x10000u - draco_sum3 - (1u - (t158 >> 16u));
+    const uint32_t t160 = t156 ? t158 & 0xffffu : t149;
+    const uint32_t t161 = t156 ? t159 & 0xffffu : t150;
+    const uint32_t t162 = t156
+        ? (t151 + 0x10000u - draco_sum4 - (1u - (t159 >> 16u))) & 0xffffu
+        : t151;
+    const uint32_t draco_digit3 = t126 + (t143 ? 1u : 0u) + (t156 ? 1u : 0u);
+    const float t163 = (float)t162 * 1.8446744e19f;
+    const float t164 = (float)t161 * 281474980000000.0f;
+    const float t165 = (float)t160 * 4294967300.0f;
+    const float t166 = floorf((t163 + t164 + t165) * draco_inverse) - 1.0f;
+    const uint32_t t167 = (uint32_t)(t166 >= 0.0f ? t166 : 0.0f);
+    const uint32_t t168 = draco_sum * t167;
+    const uint32_t t169 = draco_sum2 * t167 + (t168 >> 16u);
+    const uint32_t t170 = draco_sum3 * t167 + (t169 >> 16u);
+    const uint32_t t171 = draco_sum4 * t167 + (t170 >> 16u);
+    const uint32_t t172 = 0x10000u - (t168 & 0xffffu) - 0u;
+    const uint32_t t173 = t172 & 0xffffu;
+    const uint32_t t174 = (t156 ? t157 & 0xffffu : t148)
+        + 0x10000u
+        - (t169 & 0xffffu)
+        - (1u - (t172 >> 16u));
+    const uint32_t t175 = t174 & 0xffffu;
+    const uint32_t t176 = t160 + 0x10000u - (t170 & 0xffffu) - (1u - (t174 >> 16u));
+    const uint32_t t177 = t176 & 0xffffu;
+    const uint32_t t178 = t161 + 0x10000u - (t171 & 0xffffu) - (1u - (t176 >> 16u));
+    const uint32_t t179 = t178 & 0xffffu;
+    const uint32_t t180 = (t162 + 0x10000u - (t171 >> 16u) - (1u - (t178 >> 16u))) & 0xffffu;
+    const bool t181 = !(t175 < draco_sum2) && !(draco_sum2 < t175) && !(t173 < draco_sum);
+    const bool t182 = !(t177 < draco_sum3) && !(draco_sum3 < t177) && (draco_sum2 < t175 || t181);
+    const bool t183 = !(t179 < draco_sum4) && !(draco_sum4 < t179) && (draco_sum3 < t177 || t182);
+    const bool t184 = !(t180 < 1u) || (draco_sum4 < t179 || t183);
+    const uint32_t t185 = t173 + 0x10000u - draco_sum - 0u;
+    const uint32_t t186 = t175 + 0x10000u - draco_sum2 - (1u - (t185 >> 16u));
+    const uint32_t t187 = t177 + 0x10000u - draco_sum3 - (1u - (t186 >> 16u));
+    const uint32_t t188 = t179 + 0x10000u - draco_sum4 - (1u - (t187 >> 16u));
+    const uint32_t t189 = t184 ? t185 & 0xffffu : t173;
+    const uint32_t t190 = t184 ? t186 & 0xffffu : t175;
+    const uint32_t t191 = t184 ? t187 & 0xffffu : t177;
+    const uint32_t t192 = t184 ? t188 & 0xffffu : t179;
+    const uint32_t t193 = t184 ? (t180 + 0x10000u - 0u - (1u - (t188 >> 16u))) & 0xffffu : t180;
+    const bool t194 = !(t190 < draco_sum2) && !(draco_sum2 < t190) && !(t189 < draco_sum);
+    const bool t195 = !(t191 < draco_sum3) && !(draco_sum3 < t191) && (draco_sum2 < t190 || t194);
+    const bool t196 = !(t192 < draco_sum4) && !(draco_sum4 < t192) && (draco_sum3 < t191 || t195);
+    const bool t197 = !(t193 < 1u) || (draco_sum4 < t192 || t196);
+    const uint32_t t198 = t189 + 0x10000u - draco_sum - 0u;
+    const uint32_t t199 = t190 + 0x10000u - draco_sum2 - (1u - (t198 >> 16u));
+    const uint32_t t200 = t191 + 0x10000u - draco_sum3 - (1u - (t199 >> 16u));
+    const uint32_t t201 = t197
+        ? (t192 + 0x10000u - draco_sum4 - (1u - (t200 >> 16u))) & 0xffffu
+        : t192;
+    const uint32_t draco_digit4 = t167 + (t184 ? 1u : 0u) + (t197 ? 1u : 0u);
+    const uint32_t t202 = (t197 ? t198 & 0xffffu : t189)
+        | (t197 ? t199 & 0xffffu : t190)
+        | (t197 ? t200 & 0xffffu : t191);
+    const bool t203 = !((t202 | t201) < 1u);
+    const uint32_t t204 = draco_digit4 & 7u;
+    const bool t205 = 4u < t204;
+    const bool t206 = !(t204 < 4u) && !t205 && (t203 || !(((draco_digit4 >> 3u) & 1u) < 1u));
+    const uint32_t t207 = draco_digit4 & 3u;
+    const bool t208 = 2u < t207;
+    const bool t209 = !(t207 < 2u) && !t208 && (t203 || !(((draco_digit4 >> 2u) & 1u) < 1u));
+    const uint32_t t210 = draco_digit4 & 1u;
+    const bool t211 = 1u < t210;
+    const bool t212 = !(t210 < 1u) && !t211 && (t203 || !(((draco_digit4 >> 1u) & 1u) < 1u));
+    const uint32_t t213 = !(draco_digit < 64u)
+        ? (draco_digit4 & 0xfffffffcu) + (t208 || t209 ? 4u : 0u)
+        : (draco_digit4 & 0xfffffffeu) + (t211 || t212 ? 2u : 0u);
+    const uint32_t t214 = !(draco_digit < 128u)
+        ? (draco_digit4 & 0xfffffff8u) + (t205 || t206 ? 8u : 0u)
+        : t213;
+    const uint32_t t215 = draco_digit3 + (t214 >> 16u);
+    const uint32_t draco_recip = t214 & 0xffffu;
+    const uint32_t t216 = draco_digit2 + (t215 >> 16u);
+    const uint32_t draco_recip2 = t215 & 0xffffu;
+    const uint32_t draco_recip3 = draco_digit + (t216 >> 16u);
+    const uint32_t draco_recip4 = t216 & 0xffffu;
+    const uint32_t t217 = unitpack_bits_of(draco_scaled.x);
+    const uint32_t t218 = (t217 & 0x7fffffu) + 0x800000u;
+    const uint32_t t219 = t218 & 0xffffu;
+    const uint32_t t220 = draco_recip * t219;
+    const uint32_t t221 = draco_recip2 * t219 + (t220 >> 16u);
+    const uint32_t t222 = draco_recip4 * t219 + (t221 >> 16u);
+    const uint32_t t223 = draco_recip3 * t219 + (t222 >> 16u);
+    const uint32_t t224 = t220 & 0xffffu;
+    const uint32_t t225 = t218 >> 16u;
+    const uint32_t t226 = draco_recip * t225;
+    const uint32_t t227 = draco_recip2 * t225 + (t226 >> 16u);
+    const uint32_t t228 = draco_recip4 * t225 + (t227 >> 16u);
+    const uint32_t t229 = draco_recip3 * t225 + (t228 >> 16u);
+    const uint32_t t230 = (t221 & 0xffffu) + (t226 & 0xffffu) + (t224 >> 16u);
+    const uint32_t t231 = (t222 & 0xffffu) + (t227 & 0xffffu) + (t230 >> 16u);
+    const uint32_t t232 = t230 & 0xffffu;
+    const uint32_t t233 = (t223 & 0xffffu) + (t228 & 0xffffu) + (t231 >> 16u);
+    const uint32_t t234 = (t223 >> 16u) + (t229 & 0xffffu) + (t233 >> 16u);
+    const uint32_t t235 = t234 & 0xffffu;
+    const bool t236 = !((t224 & 0xffffu) < 1u);
+    const bool t237 = !(t235 < 0x2000u);
+    const bool t238 = !(t235 < 0x4000u);
+    const bool t239 = !(t235 < 0x8000u);
+    const uint32_t t240 = t232 & 0x7ffu;
+    const bool t241 = 0x400u < t240;
+    const bool t242 = !(t240 < 0x400u) && !t241 && (t236 || !(((t232 >> 11u) & 1u) < 1u));
+    const uint32_t t243 = t232 & 0x3ffu;
+    const bool t244 = 0x200u < t243;
+    const bool t245 = !(t243 < 0x200u) && !t244 && (t236 || !(((t232 >> 10u) & 1u) < 1u));
+    const uint32_t t246 = t232 & 0x1ffu;
+    const bool t247 = 0x100u < t246;
+    const bool t248 = !(t246 < 0x100u) && !t247 && (t236 || !(((t232 >> 9u) & 1u) < 1u));
+    const uint32_t t249 = t232 & 255u;
+    const bool t250 = 128u < t249;
+    const bool t251 = !(t249 < 128u) && !t250 && (t236 || !(((t232 >> 8u) & 1u) < 1u));
+    const uint32_t t252 = t237
+        ? (t232 & 0xfffffe00u) + (t247 || t248 ? 0x200u : 0u)
+        : (t232 & 0xffffff00u) + (t250 || t251 ? 0x100u : 0u);
+    const uint32_t t253 = t239
+        ? (t232 & 0xfffff800u) + (t241 || t242 ? 0x800u : 0u)
+        : (t238 ? (t232 & 0xfffffc00u) + (t244 || t245 ? 0x400u : 0u) : t252);
+    const uint32_t t254 = (t231 & 0xffffu) + (t253 >> 16u);
+    const uint32_t t255 = t253 & 0xffffu;
+    const uint32_t t256 = (t233 & 0xffffu) + (t254 >> 16u);
+    const uint32_t t257 = t254 & 0xffffu;
+    const uint32_t t258 = t235 + (t256 >> 16u);
+    const uint32_t t259 = t256 & 0xffffu;
+    const uint32_t t260 = (t229 >> 16u) + (t234 >> 16u) + (t258 >> 16u);
+    const uint32_t t261 = t258 & 0xffffu;
+    const uint32_t t262 = t237
+        ? ((t255 >> 9u) | (t257 << 7u)) & 0xffffu
+        : ((t255 >> 8u) | (t257 << 8u)) & 0xffffu;
+    const uint32_t t263 = t239
+        ? ((t255 >> 11u) | (t257 << 5u)) & 0xffffu
+        : (t238 ? ((t255 >> 10u) | (t257 << 6u)) & 0xffffu : t262);
+    const uint32_t t264 = t237
+        ? ((t257 >> 9u) | (t259 << 7u)) & 0xffffu
+        : ((t257 >> 8u) | (t259 << 8u)) & 0xffffu;
+    const uint32_t t265 = t239
+        ? ((t257 >> 11u) | (t259 << 5u)) & 0xffffu
+        : (t238 ? ((t257 >> 10u) | (t259 << 6u)) & 0xffffu : t264);
+    const uint32_t t266 = t237
+        ? ((t259 >> 9u) | (t261 << 7u)) & 0xffffu
+        : ((t259 >> 8u) | (t261 << 8u)) & 0xffffu;
+    const uint32_t t267 = t239
+        ? ((t259 >> 11u) | (t261 << 5u)) & 0xffffu
+        : (t238 ? ((t259 >> 10u) | (t261 << 6u)) & 0xffffu : t266);
+    const uint32_t t268 = t237 ? (t261 >> 9u) | (t260 << 7u) : (t261 >> 8u) | (t260 << 8u);
+    const uint32_t t269 = t239
+        ? (t261 >> 11u) | (t260 << 5u)
+        : (t238 ? (t261 >> 10u) | (t260 << 6u) : t268);
+    const uint32_t t270 = t263 * 0x1fffu;
+    const uint32_t t271 = t265 * 0x1fffu + (t270 >> 16u);
+    const uint32_t t272 = t267 * 0x1fffu + (t271 >> 16u);
+    const uint32_t t273 = t269 * 0x1fffu + (t272 >> 16u);
+    const uint32_t t274 = t270 & 0xffffu;
+    const uint32_t t275 = t273 >> 16u;
+    const uint32_t t276 = t274 & 0x1fffu;
+    const bool t277 = 0x1000u < t276;
+    const bool t278 = !(t276 < 0x1000u) && !t277 && !(((t274 >> 13u) & 1u) < 1u);
+    const uint32_t t279 = t274 & 0xfffu;
+    const bool t280 = 0x800u < t279;
+    const bool t281 = !(t279 < 0x800u) && !t280 && !(((t274 >> 12u) & 1u) < 1u);
+    const uint32_t t282 = !((t275 >> 1u) < 1u)
+        ? (t274 & 0xffffe000u) + (t277 || t278 ? 0x2000u : 0u)
+        : (t274 & 0xfffff000u) + (t280 || t281 ? 0x1000u : 0u);
+    const uint32_t t283 = (t271 & 0xffffu) + (t282 >> 16u);
+    const uint32_t t284 = (t272 & 0xffffu) + (t283 >> 16u);
+    const uint32_t t285 = (t273 & 0xffffu) + (t284 >> 16u);
+    const uint32_t t286 = t284 & 0xffffu;
+    const uint32_t t287 = (t286 >> 11u)
+        + ((t285 & 0xffffu) << 5u)
+        + ((t275 + (t285 >> 16u)) << 21u);
+    const bool t288 = !(((t286 & 0x7ffu) | (t283 & 0xffffu) | (t282 & 0xffffu)) < 1u);
+    const uint32_t t289 = (t217 >> 23u) + (t239 ? 27u : (t238 ? 26u : (t237 ? 25u : 24u))) + 43u;
+    const bool t290 = !(t289 < 81u);
+    const float draco_head = t290
+        ? (float)t287 * unitpack_float_of((t290 ? t289 - 80u : 1u) << 23u)
+        : 0.0f;
+    const float t291 = 0.5f - draco_head;
+    const float floor_t291 = floorf(t291);
+    const float i0 = v.x < 0.0f
+        ? floor_t291 - (t291 == floor_t291 && t288 ? 1.0f : 0.0f)
+        : floorf(draco_head + 0.5f);
+    const uint32_t t292 = unitpack_bits_of(draco_scaled.y);
+    const uint32_t t293 = (t292 & 0x7fffffu) + 0x800000u;
+    const uint32_t t294 = t293 & 0xffffu;
+    const uint32_t t295 = draco_recip * t294;
+    const uint32_t t296 = draco_recip2 * t294 + (t295 >> 16u);
+    const uint32_t t297 = draco_recip4 * t294 + (t296 >> 16u);
+    const uint32_t t298 = draco_recip3 * t294 + (t297 >> 16u);
+    const uint32_t t299 = t295 & 0xffffu;
+    const uint32_t t300 = t293 >> 16u;
+    const uint32_t t301 = draco_recip * t300;
+    const uint32_t t302 = draco_recip2 * t300 + (t301 >> 16u);
+    const uint32_t t303 = draco_recip4 * t300 + (t302 >> 16u);
+    const uint32_t t304 = draco_recip3 * t300 + (t303 >> 16u);
+    const uint32_t t305 = (t296 & 0xffffu) + (t301 & 0xffffu) + (t299 >> 16u);
+    const uint32_t t306 = (t297 & 0xffffu) + (t302 & 0xffffu) + (t305 >> 16u);
+    const uint32_t t307 = t305 & 0xffffu;
+    const uint32_t t308 = (t298 & 0xffffu) + (t303 & 0xffffu) + (t306 >> 16u);
+    const uint32_t t309 = (t298 >> 16u) + (t304 & 0xffffu) + (t308 >> 16u);
+    const uint32_t t310 = t309 & 0xffffu;
+    const bool t311 = !((t299 & 0xffffu) < 1u);
+    const bool t312 = !(t310 < 0x2000u);
+    const bool t313 = !(t310 < 0x4000u);
+    const bool t314 = !(t310 < 0x8000u);
+    const uint32_t t315 = t307 & 0x7ffu;
+    const bool t316 = 0x400u < t315;
+    const bool t317 = !(t315 < 0x400u) && !t316 && (t311 || !(((t307 >> 11u) & 1u) < 1u));
+    const uint32_t t318 = t307 & 0x3ffu;
+    const bool t319 = 0x200u < t318;
+    const bool t320 = !(t318 < 0x200u) && !t319 && (t311 || !(((t307 >> 10u) & 1u) < 1u));
+    const uint32_t t321 = t307 & 0x1ffu;
+    const bool t322 = 0x100u < t321;
+    const bool t323 = !(t321 < 0x100u) && !t322 && (t311 || !(((t307 >> 9u) & 1u) < 1u));
+    const uint32_t t324 = t307 & 255u;
+    const bool t325 = 128u < t324;
+    const bool t326 = !(t324 < 128u) && !t325 && (t311 || !(((t307 >> 8u) & 1u) < 1u));
+    const uint32_t t327 = t312
+        ? (t307 & 0xfffffe00u) + (t322 || t323 ? 0x200u : 0u)
+        : (t307 & 0xffffff00u) + (t325 || t326 ? 0x100u : 0u);
+    const uint32_t t328 = t314
+        ? (t307 & 0xfffff800u) + (t316 || t317 ? 0x800u : 0u)
+        : (t313 ? (t307 & 0xfffffc00u) + (t319 || t320 ? 0x400u : 0u) : t327);
+    const uint32_t t329 = (t306 & 0xffffu) + (t328 >> 16u);
+    const uint32_t t330 = t328 & 0xffffu;
+    const uint32_t t331 = (t308 & 0xffffu) + (t329 >> 16u);
+    const uint32_t t332 = t329 & 0xffffu;
+    const uint32_t t333 = t310 + (t331 >> 16u);
+    const uint32_t t334 = t331 & 0xffffu;
+    const uint32_t t335 = (t304 >> 16u) + (t309 >> 16u) + (t333 >> 16u);
+    const uint32_t t336 = t333 & 0xffffu;
+    const uint32_t t337 = t312
+        ? ((t330 >> 9u) | (t332 << 7u)) & 0xffffu
+        : ((t330 >> 8u) | (t332 << 8u)) & 0xffffu;
+    const uint32_t t338 = t314
+        ? ((t330 >> 11u) | (t332 << 5u)) & 0xffffu
+        : (t313 ? ((t330 >> 10u) | (t332 << 6u)) & 0xffffu : t337);
+    const uint32_t t339 = t312
+        ? ((t332 >> 9u) | (t334 << 7u)) & 0xffffu
+        : ((t332 >> 8u) | (t334 << 8u)) & 0xffffu;
+    const uint32_t t340 = t314
+        ? ((t332 >> 11u) | (t334 << 5u)) & 0xffffu
+        : (t313 ? ((t332 >> 10u) | (t334 << 6u)) & 0xffffu : t339);
+    const uint32_t t341 = t312
+        ? ((t334 >> 9u) | (t336 << 7u)) & 0xffffu
+        : ((t334 >> 8u) | (t336 << 8u)) & 0xffffu;
+    const uint32_t t342 = t314
+        ? ((t334 >> 11u) | (t336 << 5u)) & 0xffffu
+        : (t313 ? ((t334 >> 10u) | (t336 << 6u)) & 0xffffu : t341);
+    const uint32_t t343 = t312 ? (t336 >> 9u) | (t335 << 7u) : (t336 >> 8u) | (t335 << 8u);
+    const uint32_t t344 = t314
+        ? (t336 >> 11u) | (t335 << 5u)
+        : (t313 ? (t336 >> 10u) | (t335 << 6u) : t343);
+    const uint32_t t345 = t338 * 0x1fffu;
+    const uint32_t t346 = t340 * 0x1fffu + (t345 >> 16u);
+    const uint32_t t347 = t342 * 0x1fffu + (t346 >> 16u);
+    const uint32_t t348 = t344 * 0x1fffu + (t347 >> 16u);
+    const uint32_t t349 = t345 & 0xffffu;
+    const uint32_t t350 = t348 >> 16u;
+    const uint32_t t351 = t349 & 0x1fffu;
+    const bool t352 = 0x1000u < t351;
+    const bool t353 = !(t351 < 0x1000u) && !t352 && !(((t349 >> 13u) & 1u) < 1u);
+    const uint32_t t354 = t349 & 0xfffu;
+    const bool t355 = 0x800u < t354;
+    const bool t356 = !(t354 < 0x800u) && !t355 && !(((t349 >> 12u) & 1u) < 1u);
+    const uint32_t t357 = !((t350 >> 1u) < 1u)
+        ? (t349 & 0xffffe000u) + (t352 || t353 ? 0x2000u : 0u)
+        : (t349 & 0xfffff000u) + (t355 || t356 ? 0x1000u : 0u);
+    const uint32_t t358 = (t346 & 0xffffu) + (t357 >> 16u);
+    const uint32_t t359 = (t347 & 0xffffu) + (t358 >> 16u);
+    const uint32_t t360 = (t348 & 0xffffu) + (t359 >> 16u);
+    const uint32_t t361 = t359 & 0xffffu;
+    const uint32_t t362 = (t361 >> 11u)
+        + ((t360 & 0xffffu) << 5u)
+        + ((t350 + (t360 >> 16u)) << 21u);
+    const bool t363 = !(((t361 & 0x7ffu) | (t358 & 0xffffu) | (t357 & 0xffffu)) < 1u);
+    const uint32_t t364 = (t292 >> 23u) + (t314 ? 27u : (t313 ? 26u : (t312 ? 25u : 24u))) + 43u;
+    const bool t365 = !(t364 < 81u);
+    const float draco_head2 = t365
+        ? (float)t362 * unitpack_float_of((t365 ? t364 - 80u : 1u) << 23u)
+        : 0.0f;
+    const float t366 = floorf(draco_head2 + 0.5f);
+    const float t367 = 0.5f - draco_head2;
+    const float floor_t367 = floorf(t367);
+    const float t368 = floor_t367 - (t367 == floor_t367 && t363 ? 1.0f : 0.0f);
+    const float i1 = v.y < 0.0f ? t368 : t366;
+    const bool t369 = !(draco_sum2 < 27611u) && !(27611u < draco_sum2) && 0x1a00u < draco_sum;
+    const bool t370 = !(draco_sum3 < 61249u)
+        && !(61249u < draco_sum3)
+        && (27611u < draco_sum2 || t369);
+    const bool t371 = !(draco_sum4 < 8589u)
+        && !(8589u < draco_sum4)
+        && (61249u < draco_sum3 || t370);
+    const bool t372 = !(t39 < 107u) && !(107u < t39) && (8589u < draco_sum4 || t371);
+    const bool t373 = !(draco_sum2 < 55222u) && !(55222u < draco_sum2) && 0x3400u < draco_sum;
+    const bool t374 = !(draco_sum3 < 56962u)
+        && !(56962u < draco_sum3)
+        && (55222u < draco_sum2 || t373);
+    const bool t375 = !(draco_sum4 < 17179u)
+        && !(17179u < draco_sum4)
+        && (56962u < draco_sum3 || t374);
+    const bool t376 = !(t39 < 106u) && !(106u < t39) && (17179u < draco_sum4 || t375);
+    const bool t377 = !(draco_sum2 < 44908u) && !(44908u < draco_sum2) && 0x6800u < draco_sum;
+    const bool t378 = !(draco_sum3 < 48389u)
+        && !(48389u < draco_sum3)
+        && (44908u < draco_sum2 || t377);
+    const bool t379 = !(draco_sum4 < 34359u)
+        && !(34359u < draco_sum4)
+        && (48389u < draco_sum3 || t378);
+    const bool t380 = !(t39 < 105u) && !(105u < t39) && (34359u < draco_sum4 || t379);
+    const bool t381 = ok && (!(t39 < 108u) || t372 || t376 || t380);
+    const float i2 = 8191.0f - fabsf(i0) - fabsf(i1);
+    const float t382 = i1 > 0.0f ? i1 + i2 : i1 - i2;
+    const float t383 = -(i2 < 0.0f ? 0.0f : i2);
+    const bool t384 = i0 >= 0.0f;
+    const unitpack_vec2 t385 = {
+        i2 < 0.0f ? t382 : (v.y < 0.0f ? t368 : t366),
+        v.z < 0.0f ? t383 : (i2 < 0.0f ? 0.0f : i2)
     };
-    const unitpack_vec2 t98 = { v.z < 0.0f ? t93 : t97.x, i2 < 0.0f ? t92 : t97.y };
+    const unitpack_vec2 t386 = {
+        v.z < 0.0f ? t383 : (i2 < 0.0f ? 0.0f : i2),
+        i2 < 0.0f ? t382 : (v.y < 0.0f ? t368 : t366)
+    };
     const unitpack_vec2 st = {
-        t94 ? t96.x + 8191.0f : (t96.x < 0.0f ? fabsf(t98.x) : 16382.0f - fabsf(t98.x)),
-        t94 ? t96.y + 8191.0f : (t96.y < 0.0f ? fabsf(t98.y) : 16382.0f - fabsf(t98.y))
+        t384 ? t385.x + 8191.0f : (t385.x < 0.0f ? fabsf(t386.x) : 16382.0f - fabsf(t386.x)),
+        t384 ? t385.y + 8191.0f : (t385.y < 0.0f ? fabsf(t386.y) : 16382.0f - fabsf(t386.y))
     };
-    const bool t99 = (st.x == 0.0f && (st.y == 0.0f || st.y == 16382.0f))
+    const bool t387 = (st.x == 0.0f && (st.y == 0.0f || st.y == 16382.0f))
         || (st.x == 16382.0f && st.y == 0.0f);
-    const bool t100 = (st.x == 0.0f && st.y > 8191.0f) || (st.x == 16382.0f && st.y < 8191.0f);
-    const bool t101 = (st.y == 16382.0f && st.x < 8191.0f) || (st.y == 0.0f && st.x > 8191.0f);
-    const bool t102 = (st.x == 0.0f && st.y > 8191.0f) || (st.x == 16382.0f && st.y < 8191.0f);
-    const unitpack_uvec3 t103 = {
+    const bool t388 = (st.x == 0.0f && st.y > 8191.0f) || (st.x == 16382.0f && st.y < 8191.0f);
+    const bool t389 = (st.y == 16382.0f && st.x < 8191.0f) || (st.y == 0.0f && st.x > 8191.0f);
+    const bool t390 = (st.x == 0.0f && st.y > 8191.0f) || (st.x == 16382.0f && st.y < 8191.0f);
+    const unitpack_uvec3 t391 = {
         unitpack_bits_of(v.x) & 0x7fffffffu,
         unitpack_bits_of(v.y) & 0x7fffffffu,
         unitpack_bits_of(v.z) & 0x7fffffffu
     };
-    const bool t104 = !(t103.x < 0x7f800001u) || !(t103.y < 0x7f800001u) || !(t103.z < 0x7f800001u);
-    const bool t105 = (!(t103.x < 0x7f800000u) && !!(t103.x < 0x7f800001u))
-        || (!(t103.y < 0x7f800000u) && !!(t103.y < 0x7f800001u));
-    const bool t106 = t105 || (!(t103.z < 0x7f800000u) && !!(t103.z < 0x7f800001u));
-    const unitpack_vec2 t107 = {
-        t100 ? st.x : (t101 ? 16382.0f - st.x : st.x),
-        t102 ? 16382.0f - st.y : st.y
+    const bool t392 = !(t391.x < 0x7f800001u) || !(t391.y < 0x7f800001u) || !(t391.z < 0x7f800001u);
+    const bool t393 = (!(t391.x < 0x7f800000u) && !!(t391.x < 0x7f800001u))
+        || (!(t391.y < 0x7f800000u) && !!(t391.y < 0x7f800001u));
+    const bool t394 = t393 || (!(t391.z < 0x7f800000u) && !!(t391.z < 0x7f800001u));
+    const unitpack_vec2 t395 = {
+        t388 ? st.x : (t389 ? 16382.0f - st.x : st.x),
+        t390 ? 16382.0f - st.y : st.y
     };
     const unitpack_vec2 codes = {
-        t1 ? (t99 ? 16382.0f : t107.x) : 8191.0f,
-        t1 ? (t99 ? 16382.0f : t107.y) : (t106 && !t104 ? 16382.0f : 8191.0f)
+        t381 ? (t387 ? 16382.0f : t395.x) : 8191.0f,
+        t381 ? (t387 ? 16382.0f : t395.y) : (t394 && !t392 ? 16382.0f : 8191.0f)
     };
     return codes;
 }
@@ -347,171 +741,565 @@ static inline uint32_t unitpack_draco_oct14_encode_v(unitpack_vec3 v) {
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
     const bool sum_below_16 = sum < 16.0f;
     const bool ok = sum >= 2.0f && sum_below_16;
-    const unitpack_vec3 w = {
-        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
-        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
-        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
+    const unitpack_vec3 t1 = {
+        fabsf(ok ? scaled.x : 2.0f),
+        fabsf(ok ? scaled.y : 0.0f),
+        fabsf(ok ? scaled.z : 0.0f)
     };
-    const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
-    const bool t1 = ok && fabsf(v.x) + fabsf(v.y) + fabsf(v.z) >= 1.0000001e-6f;
-    const unitpack_vec3 magnitude = { fabsf(w2.x), fabsf(w2.y), fabsf(w2.z) };
-    const float l1 = magnitude.x + magnitude.y + magnitude.z;
-    const float fixed2 = magnitude.x * 4096.0f;
-    const float floor_fixed2 = floorf(fixed2);
-    const float fixed_rest = (fixed2 - floor_fixed2) * 65536.0f;
-    const float floor_fixed_rest = floorf(fixed_rest);
-    const uint32_t t2 = (uint32_t)floorf((fixed_rest - floor_fixed_rest) * 65536.0f);
-    const uint32_t floor_fixed_rest_u = (uint32_t)floor_fixed_rest;
-    const uint32_t floor_fixed2_u = (uint32_t)floor_fixed2;
-    const float fixed3 = magnitude.y * 4096.0f;
-    const float floor_fixed3 = floorf(fixed3);
-    const float fixed_rest2 = (fixed3 - floor_fixed3) * 65536.0f;
-    const float floor_fixed_rest2 = floorf(fixed_rest2);
-    const uint32_t t3 = (uint32_t)floorf((fixed_rest2 - floor_fixed_rest2) * 65536.0f);
-    const uint32_t floor_fixed_rest2_u = (uint32_t)floor_fixed_rest2;
-    const uint32_t floor_fixed3_u = (uint32_t)floor_fixed3;
-    const float fixed4 = magnitude.z * 4096.0f;
-    const float floor_fixed4 = floorf(fixed4);
-    const float fixed_rest3 = (fixed4 - floor_fixed4) * 65536.0f;
-    const float floor_fixed_rest3 = floorf(fixed_rest3);
-    const uint32_t t4 = t2 + t3 + (uint32_t)floorf((fixed_rest3 - floor_fixed_rest3) * 65536.0f);
-    const uint32_t t5 = floor_fixed_rest_u
-        + floor_fixed_rest2_u
-        + (uint32_t)floor_fixed_rest3
-        + (t4 >> 16u);
-    const uint32_t t6 = floor_fixed2_u + floor_fixed3_u + (uint32_t)floor_fixed4 + (t5 >> 16u);
-    const uint32_t t7 = t4 & 0xffffu;
-    const uint32_t t8 = t5 & 0xffffu;
-    const float t9 = nearbyintf(magnitude.x / l1 * 8191.0f);
-    const float estimate = t9 <= 8191.0f ? t9 : 8191.0f;
-    const uint32_t estimate_u = (uint32_t)estimate;
-    const uint32_t t10 = t2 * 0x3ffeu;
-    const uint32_t t11 = floor_fixed_rest_u * 0x3ffeu + (t10 >> 16u);
-    const uint32_t t12 = floor_fixed2_u * 0x3ffeu + (t11 >> 16u);
-    const uint32_t t13 = t10 & 0xffffu;
-    const uint32_t t14 = t11 & 0xffffu;
-    const uint32_t t15 = t12 & 0xffffu;
-    const uint32_t t16 = t12 >> 16u;
-    const uint32_t t17 = estimate_u + estimate_u + 1u;
-    const uint32_t t18 = t7 * t17;
-    const uint32_t t19 = t8 * t17 + (t18 >> 16u);
-    const uint32_t t20 = t6 * t17 + (t19 >> 16u);
-    const uint32_t t21 = t18 & 0xffffu;
-    const uint32_t t22 = t19 & 0xffffu;
-    const uint32_t t23 = t20 & 0xffffu;
-    const uint32_t t24 = t20 >> 16u;
-    const uint32_t t25 = estimate_u + estimate_u - 1u;
-    const uint32_t t26 = t7 * t25;
-    const uint32_t t27 = t8 * t25 + (t26 >> 16u);
-    const uint32_t t28 = t6 * t25 + (t27 >> 16u);
-    const uint32_t t29 = t26 & 0xffffu;
-    const uint32_t t30 = t27 & 0xffffu;
-    const uint32_t t31 = t28 & 0xffffu;
-    const uint32_t t32 = t28 >> 16u;
-    const bool t33 = w2.x < 0.0f;
-    const bool t34 = !(t14 < t22) && !(t22 < t14) && (t21 < t13 || !(t13 < t21));
-    const bool t35 = !(t15 < t23) && !(t23 < t15) && (t22 < t14 || t34);
-    const bool t36 = !(t16 < t24) && !(t24 < t16) && (t23 < t15 || t35);
-    const bool t37 = !(t14 < t22) && !(t22 < t14) && t21 < t13;
-    const bool t38 = !(t15 < t23) && !(t23 < t15) && (t22 < t14 || t37);
-    const bool t39 = !(t16 < t24) && !(t24 < t16) && (t23 < t15 || t38);
-    const bool t40 = ((t24 < t16 || t36) && !t33) || ((t24 < t16 || t39) && t33);
-    const bool t41 = !(t30 < t14) && !(t14 < t30) && t13 < t29;
-    const bool t42 = !(t31 < t15) && !(t15 < t31) && (t14 < t30 || t41);
-    const bool t43 = !(t32 < t16) && !(t16 < t32) && (t15 < t31 || t42);
-    const bool t44 = !(t30 < t14) && !(t14 < t30) && (t13 < t29 || !(t29 < t13));
-    const bool t45 = !(t31 < t15) && !(t15 < t31) && (t14 < t30 || t44);
-    const bool t46 = !(t32 < t16) && !(t16 < t32) && (t15 < t31 || t45);
-    const bool t47 = ((t16 < t32 || t43) && !t33) || ((t16 < t32 || t46) && t33);
-    const float t48 = estimate + (t40 ? 1.0f : 0.0f) - (estimate > 0.0f && t47 ? 1.0f : 0.0f);
-    const float i0 = t33 ? -t48 : t48;
-    const float t49 = nearbyintf(magnitude.y / l1 * 8191.0f);
-    const float estimate2 = t49 <= 8191.0f ? t49 : 8191.0f;
-    const uint32_t estimate2_u = (uint32_t)estimate2;
-    const uint32_t t50 = t3 * 0x3ffeu;
-    const uint32_t t51 = floor_fixed_rest2_u * 0x3ffeu + (t50 >> 16u);
-    const uint32_t t52 = floor_fixed3_u * 0x3ffeu + (t51 >> 16u);
-    const uint32_t t53 = t50 & 0xffffu;
-    const uint32_t t54 = t51 & 0xffffu;
-    const uint32_t t55 = t52 & 0xffffu;
-    const uint32_t t56 = t52 >> 16u;
-    const uint32_t t57 = estimate2_u + estimate2_u + 1u;
-    const uint32_t t58 = t7 * t57;
-    const uint32_t t59 = t8 * t57 + (t58 >> 16u);
-    const uint32_t t60 = t6 * t57 + (t59 >> 16u);
-    const uint32_t t61 = t58 & 0xffffu;
-    const uint32_t t62 = t59 & 0xffffu;
-    const uint32_t t63 = t60 & 0xffffu;
-    const uint32_t t64 = t60 >> 16u;
-    const uint32_t t65 = estimate2_u + estimate2_u - 1u;
-    const uint32_t t66 = t7 * t65;
-    const uint32_t t67 = t8 * t65 + (t66 >> 16u);
-    const uint32_t t68 = t6 * t65 + (t67 >> 16u);
-    const uint32_t t69 = t66 & 0xffffu;
-    const uint32_t t70 = t67 & 0xffffu;
-    const uint32_t t71 = t68 & 0xffffu;
-    const uint32_t t72 = t68 >> 16u;
-    const bool t73 = w2.y < 0.0f;
-    const bool t74 = !(t54 < t62) && !(t62 < t54) && (t61 < t53 || !(t53 < t61));
-    const bool t75 = !(t55 < t63) && !(t63 < t55) && (t62 < t54 || t74);
-    const bool t76 = !(t56 < t64) && !(t64 < t56) && (t63 < t55 || t75);
-    const bool t77 = !(t54 < t62) && !(t62 < t54) && t61 < t53;
-    const bool t78 = !(t55 < t63) && !(t63 < t55) && (t62 < t54 || t77);
-    const bool t79 = !(t56 < t64) && !(t64 < t56) && (t63 < t55 || t78);
-    const bool t80 = ((t64 < t56 || t76) && !t73) || ((t64 < t56 || t79) && t73);
-    const bool t81 = !(t70 < t54) && !(t54 < t70) && t53 < t69;
-    const bool t82 = !(t71 < t55) && !(t55 < t71) && (t54 < t70 || t81);
-    const bool t83 = !(t72 < t56) && !(t56 < t72) && (t55 < t71 || t82);
-    const bool t84 = !(t70 < t54) && !(t54 < t70) && (t53 < t69 || !(t69 < t53));
-    const bool t85 = !(t71 < t55) && !(t55 < t71) && (t54 < t70 || t84);
-    const bool t86 = !(t72 < t56) && !(t56 < t72) && (t55 < t71 || t85);
-    const bool t87 = ((t56 < t72 || t83) && !t73) || ((t56 < t72 || t86) && t73);
-    const float t88 = estimate2 + (t80 ? 1.0f : 0.0f);
-    const float t89 = estimate2 > 0.0f && t87 ? 1.0f : 0.0f;
-    const float t90 = t88 - t89;
-    const float neg_t90 = -t90;
-    const float i1 = t73 ? neg_t90 : t90;
-    const float t91 = 8191.0f - fabsf(i0);
-    const float abs_i1 = fabsf(i1);
-    const float i2 = t91 - abs_i1;
-    const float t92 = i1 > 0.0f ? i1 + i2 : i1 - i2;
-    const float t93 = -(i2 < 0.0f ? 0.0f : i2);
-    const bool t94 = i0 >= 0.0f;
-    const unitpack_vec2 t95 = {
-        w2.y < 0.0f ? neg_t90 : t88 - t89,
-        i2 < 0.0f ? 0.0f : t91 - abs_i1
+    const unitpack_vec3 draco_scaled = {
+        fabsf(t1.x) < 1.1754944e-38f ? 0.0f : t1.x,
+        fabsf(t1.y) < 1.1754944e-38f ? 0.0f : t1.y,
+        fabsf(t1.z) < 1.1754944e-38f ? 0.0f : t1.z
     };
-    const unitpack_vec2 t96 = { i2 < 0.0f ? t92 : t95.x, v.z < 0.0f ? t93 : t95.y };
-    const unitpack_vec2 t97 = {
-        i2 < 0.0f ? 0.0f : t91 - abs_i1,
-        w2.y < 0.0f ? neg_t90 : t88 - t89
+    const float draco_larger = draco_scaled.x >= draco_scaled.y ? draco_scaled.x : draco_scaled.y;
+    const uint32_t t2 = unitpack_bits_of(draco_larger) >> 23u;
+    const uint32_t t3 = t2 < 67u ? 67u : t2;
+    const float t4 = nearbyintf(
+        (draco_scaled.x <= draco_scaled.y ? draco_scaled.x : draco_scaled.y)
+            * unitpack_float_of((306u - t3) << 23u)
+    );
+    const float draco_smaller = t4 * unitpack_float_of((t3 - 52u) << 23u);
+    const float t5 = draco_larger * 8192.0f;
+    const float floor_t5 = floorf(t5);
+    const float t6 = (t5 - floor_t5) * 65536.0f;
+    const float floor_t6 = floorf(t6);
+    const float t7 = (t6 - floor_t6) * 65536.0f;
+    const float floor_t7 = floorf(t7);
+    const float t8 = (t7 - floor_t7) * 65536.0f;
+    const float floor_t8 = floorf(t8);
+    const float t9 = draco_smaller * 8192.0f;
+    const float floor_t9 = floorf(t9);
+    const float t10 = (t9 - floor_t9) * 65536.0f;
+    const float floor_t10 = floorf(t10);
+    const float t11 = (t10 - floor_t10) * 65536.0f;
+    const float floor_t11 = floorf(t11);
+    const float t12 = (t11 - floor_t11) * 65536.0f;
+    const float floor_t12 = floorf(t12);
+    const float t13 = draco_scaled.z * 8192.0f;
+    const float floor_t13 = floorf(t13);
+    const float t14 = (t13 - floor_t13) * 65536.0f;
+    const float floor_t14 = floorf(t14);
+    const float t15 = (t14 - floor_t14) * 65536.0f;
+    const float floor_t15 = floorf(t15);
+    const float t16 = (t15 - floor_t15) * 65536.0f;
+    const float floor_t16 = floorf(t16);
+    const bool t17 = t8 > floor_t8 || t12 > floor_t12 || t16 > floor_t16;
+    const uint32_t t18 = (uint32_t)floor_t8 + (uint32_t)floor_t12 + (uint32_t)floor_t16;
+    const uint32_t t19 = (uint32_t)floor_t7
+        + (uint32_t)floor_t11
+        + (uint32_t)floor_t15
+        + (t18 >> 16u);
+    const uint32_t t20 = t18 & 0xffffu;
+    const uint32_t t21 = (uint32_t)floor_t6
+        + (uint32_t)floor_t10
+        + (uint32_t)floor_t14
+        + (t19 >> 16u);
+    const uint32_t t22 = (uint32_t)floor_t5
+        + (uint32_t)floor_t9
+        + (uint32_t)floor_t13
+        + (t21 >> 16u);
+    const uint32_t t23 = t20 & 0xfffu;
+    const bool t24 = 0x800u < t23;
+    const bool t25 = !(t23 < 0x800u) && !t24 && (t17 || !(((t20 >> 12u) & 1u) < 1u));
+    const uint32_t t26 = t20 & 0x7ffu;
+    const bool t27 = 0x400u < t26;
+    const bool t28 = !(t26 < 0x400u) && !t27 && (t17 || !(((t20 >> 11u) & 1u) < 1u));
+    const uint32_t t29 = t20 & 0x3ffu;
+    const bool t30 = 0x200u < t29;
+    const bool t31 = !(t29 < 0x200u) && !t30 && (t17 || !(((t20 >> 10u) & 1u) < 1u));
+    const uint32_t t32 = !(t22 < 0x8000u)
+        ? (t20 & 0xfffff800u) + (t27 || t28 ? 0x800u : 0u)
+        : (t20 & 0xfffffc00u) + (t30 || t31 ? 0x400u : 0u);
+    const uint32_t t33 = !(t22 < 0x10000u)
+        ? (t20 & 0xfffff000u) + (t24 || t25 ? 0x1000u : 0u)
+        : t32;
+    const uint32_t t34 = (t19 & 0xffffu) + (t33 >> 16u);
+    const uint32_t t35 = (t21 & 0xffffu) + (t34 >> 16u);
+    const uint32_t t36 = t34 & 0xffffu;
+    const uint32_t t37 = t22 + (t35 >> 16u);
+    const uint32_t t38 = t35 & 0xffffu;
+    const uint32_t draco_sum = ((t33 & 0xffffu) >> 1u) | ((t36 & 1u) << 15u);
+    const uint32_t draco_sum2 = (t36 >> 1u) | ((t38 & 1u) << 15u);
+    const uint32_t draco_sum3 = (t38 >> 1u) | ((t37 & 1u) << 15u);
+    const uint32_t draco_sum4 = t37 >> 1u;
+    const uint32_t t39 = 255u - (unitpack_bits_of(scale) >> 23u);
+    const float t40 = (float)draco_sum4 * 281474980000000.0f;
+    const float t41 = (float)draco_sum3 * 4294967300.0f;
+    const float t42 = (float)draco_sum2 * 65536.0f;
+    const float draco_inverse = 1.0f / (t40 + t41 + t42);
+    const float t43 = floorf(5.902958e20f * draco_inverse) - 1.0f;
+    const uint32_t t44 = (uint32_t)(t43 >= 0.0f ? t43 : 0.0f);
+    const uint32_t t45 = draco_sum * t44;
+    const uint32_t t46 = draco_sum2 * t44 + (t45 >> 16u);
+    const uint32_t t47 = draco_sum3 * t44 + (t46 >> 16u);
+    const uint32_t t48 = draco_sum4 * t44 + (t47 >> 16u);
+    const uint32_t t49 = 0x10000u - (t45 & 0xffffu) - 0u;
+    const uint32_t t50 = t49 & 0xffffu;
+    const uint32_t t51 = 0x10000u - (t46 & 0xffffu) - (1u - (t49 >> 16u));
+    const uint32_t t52 = t51 & 0xffffu;
+    const uint32_t t53 = 0x10000u - (t47 & 0xffffu) - (1u - (t51 >> 16u));
+    const uint32_t t54 = t53 & 0xffffu;
+    const uint32_t t55 = 0x10000u - (t48 & 0xffffu) - (1u - (t53 >> 16u));
+    const uint32_t t56 = t55 & 0xffffu;
+    const uint32_t t57 = (0x10020u - (t48 >> 16u) - (1u - (t55 >> 16u))) & 0xffffu;
+    const bool t58 = !(t52 < draco_sum2) && !(draco_sum2 < t52) && !(t50 < draco_sum);
+    const bool t59 = !(t54 < draco_sum3) && !(draco_sum3 < t54) && (draco_sum2 < t52 || t58);
+    const bool t60 = !(t56 < draco_sum4) && !(draco_sum4 < t56) && (draco_sum3 < t54 || t59);
+    const bool t61 = !(t57 < 1u) || (draco_sum4 < t56 || t60);
+    const uint32_t t62 = t50 + 0x10000u - draco_sum - 0u;
+    const uint32_t t63 = t52 + 0x10000u - draco_sum2 - (1u - (t62 >> 16u));
+    const uint32_t t64 = t54 + 0x10000u - draco_sum3 - (1u - (t63 >> 16u));
+    const uint32_t t65 = t56 + 0x10000u - draco_sum4 - (1u - (t64 >> 16u));
+    const uint32_t t66 = t61 ? t62 & 0xffffu : t50;
+    const uint32_t t67 = t61 ? t63 & 0xffffu : t52;
+    const uint32_t t68 = t61 ? t64 & 0xffffu : t54;
+    const uint32_t t69 = t61 ? t65 & 0xffffu : t56;
+    const uint32_t t70 = t61 ? (t57 + 0x10000u - 0u - (1u - (t65 >> 16u))) & 0xffffu : t57;
+    const bool t71 = !(t67 < draco_sum2) && !(draco_sum2 < t67) && !(t66 < draco_sum);
+    const bool t72 = !(t68 < draco_sum3) && !(draco_sum3 < t68) && (draco_sum2 < t67 || t71);
+    const bool t73 = !(t69 < draco_sum4) && !(draco_sum4 < t69) && (draco_sum3 < t68 || t72);
+    const bool t74 = !(t70 < 1u) || (draco_sum4 < t69 || t73);
+    const uint32_t t75 = t66 + 0x10000u - draco_sum - 0u;
+    const uint32_t t76 = t67 + 0x10000u - draco_sum2 - (1u - (t75 >> 16u));
+    const uint32_t t77 = t68 + 0x10000u - draco_sum3 - (1u - (t76 >> 16u));
+    const uint32_t t78 = t74 ? t76 & 0xffffu : t67;
+    const uint32_t t79 = t74 ? t77 & 0xffffu : t68;
+    const uint32_t t80 = t74 ? (t69 + 0x10000u - draco_sum4 - (1u - (t77 >> 16u))) & 0xffffu : t69;
+    const uint32_t draco_digit = t44 + (t61 ? 1u : 0u) + (t74 ? 1u : 0u);
+    const float t81 = (float)t80 * 1.8446744e19f;
+    const float t82 = (float)t79 * 281474980000000.0f;
+    const float t83 = (float)t78 * 4294967300.0f;
+    const float t84 = floorf((t81 + t82 + t83) * draco_inverse) - 1.0f;
+    const uint32_t t85 = (uint32_t)(t84 >= 0.0f ? t84 : 0.0f);
+    const uint32_t t86 = draco_sum * t85;
+    const uint32_t t87 = draco_sum2 * t85 + (t86 >> 16u);
+    const uint32_t t88 = draco_sum3 * t85 + (t87 >> 16u);
+    const uint32_t t89 = draco_sum4 * t85 + (t88 >> 16u);
+    const uint32_t t90 = 0x10000u - (t86 & 0xffffu) - 0u;
+    const uint32_t t91 = t90 & 0xffffu;
+    const uint32_t t92 = (t74 ? t75 & 0xffffu : t66)
+        + 0x10000u
+        - (t87 & 0xffffu)
+        - (1u - (t90 >> 16u));
+    const uint32_t t93 = t92 & 0xffffu;
+    const uint32_t t94 = t78 + 0x10000u - (t88 & 0xffffu) - (1u - (t92 >> 16u));
+    const uint32_t t95 = t94 & 0xffffu;
+    const uint32_t t96 = t79 + 0x10000u - (t89 & 0xffffu) - (1u - (t94 >> 16u));
+    const uint32_t t97 = t96 & 0xffffu;
+    const uint32_t t98 = (t80 + 0x10000u - (t89 >> 16u) - (1u - (t96 >> 16u))) & 0xffffu;
+    const bool t99 = !(t93 < draco_sum2) && !(draco_sum2 < t93) && !(t91 < draco_sum);
+    const bool t100 = !(t95 < draco_sum3) && !(draco_sum3 < t95) && (draco_sum2 < t93 || t99);
+    const bool t101 = !(t97 < draco_sum4) && !(draco_sum4 < t97) && (draco_sum3 < t95 || t100);
+    const bool t102 = !(t98 < 1u) || (draco_sum4 < t97 || t101);
+    const uint32_t t103 = t91 + 0x10000u - draco_sum - 0u;
+    const uint32_t t104 = t93 + 0x10000u - draco_sum2 - (1u - (t103 >> 16u));
+    const uint32_t t105 = t95 + 0x10000u - draco_sum3 - (1u - (t104 >> 16u));
+    const uint32_t t106 = t97 + 0x10000u - draco_sum4 - (1u - (t105 >> 16u));
+    const uint32_t t107 = t102 ? t103 & 0xffffu : t91;
+    const uint32_t t108 = t102 ? t104 & 0xffffu : t93;
+    const uint32_t t109 = t102 ? t105 & 0xffffu : t95;
+    const uint32_t t110 = t102 ? t106 & 0xffffu : t97;
+    const uint32_t t111 = t102 ? (t98 + 0x10000u - 0u - (1u - (t106 >> 16u))) & 0xffffu : t98;
+    const bool t112 = !(t108 < draco_sum2) && !(draco_sum2 < t108) && !(t107 < draco_sum);
+    const bool t113 = !(t109 < draco_sum3) && !(draco_sum3 < t109) && (draco_sum2 < t108 || t112);
+    const bool t114 = !(t110 < draco_sum4) && !(draco_sum4 < t110) && (draco_sum3 < t109 || t113);
+    const bool t115 = !(t111 < 1u) || (draco_sum4 < t110 || t114);
+    const uint32_t t116 = t107 + 0x10000u - draco_sum - 0u;
+    const uint32_t t117 = t108 + 0x10000u - draco_sum2 - (1u - (t116 >> 16u));
+    const uint32_t t118 = t109 + 0x10000u - draco_sum3 - (1u - (t117 >> 16u));
+    const uint32_t t119 = t115 ? t117 & 0xffffu : t108;
+    const uint32_t t120 = t115 ? t118 & 0xffffu : t109;
+    const uint32_t t121 = t115
+        ? (t110 + 0x10000u - draco_sum4 - (1u - (t118 >> 16u))) & 0xffffu
+        : t110;
+    const uint32_t draco_digit2 = t85 + (t102 ? 1u : 0u) + (t115 ? 1u : 0u);
+    const float t122 = (float)t121 * 1.8446744e19f;
+    const float t123 = (float)t120 * 281474980000000.0f;
+    const float t124 = (float)t119 * 4294967300.0f;
+    const float t125 = floorf((t122 + t123 + t124) * draco_inverse) - 1.0f;
+    const uint32_t t126 = (uint32_t)(t125 >= 0.0f ? t125 : 0.0f);
+    const uint32_t t127 = draco_sum * t126;
+    const uint32_t t128 = draco_sum2 * t126 + (t127 >> 16u);
+    const uint32_t t129 = draco_sum3 * t126 + (t128 >> 16u);
+    const uint32_t t130 = draco_sum4 * t126 + (t129 >> 16u);
+    const uint32_t t131 = 0x10000u - (t127 & 0xffffu) - 0u;
+    const uint32_t t132 = t131 & 0xffffu;
+    const uint32_t t133 = (t115 ? t116 & 0xffffu : t107)
+        + 0x10000u
+        - (t128 & 0xffffu)
+        - (1u - (t131 >> 16u));
+    const uint32_t t134 = t133 & 0xffffu;
+    const uint32_t t135 = t119 + 0x10000u - (t129 & 0xffffu) - (1u - (t133 >> 16u));
+    const uint32_t t136 = t135 & 0xffffu;
+    const uint32_t t137 = t120 + 0x10000u - (t130 & 0xffffu) - (1u - (t135 >> 16u));
+    const uint32_t t138 = t137 & 0xffffu;
+    const uint32_t t139 = (t121 + 0x10000u - (t130 >> 16u) - (1u - (t137 >> 16u))) & 0xffffu;
+    const bool t140 = !(t134 < draco_sum2) && !(draco_sum2 < t134) && !(t132 < draco_sum);
+    const bool t141 = !(t136 < draco_sum3) && !(draco_sum3 < t136) && (draco_sum2 < t134 || t140);
+    const bool t142 = !(t138 < draco_sum4) && !(draco_sum4 < t138) && (draco_sum3 < t136 || t141);
+    const bool t143 = !(t139 < 1u) || (draco_sum4 < t138 || t142);
+    const uint32_t t144 = t132 + 0x10000u - draco_sum - 0u;
+    const uint32_t t145 = t134 + 0x10000u - draco_sum2 - (1u - (t144 >> 16u));
+    const uint32_t t146 = t136 + 0x10000u - draco_sum3 - (1u - (t145 >> 16u));
+    const uint32_t t147 = t138 + 0x10000u - draco_sum4 - (1u - (t146 >> 16u));
+    const uint32_t t148 = t143 ? t144 & 0xffffu : t132;
+    const uint32_t t149 = t143 ? t145 & 0xffffu : t134;
+    const uint32_t t150 = t143 ? t146 & 0xffffu : t136;
+    const uint32_t t151 = t143 ? t147 & 0xffffu : t138;
+    const uint32_t t152 = t143 ? (t139 + 0x10000u - 0u - (1u - (t147 >> 16u))) & 0xffffu : t139;
+    const bool t153 = !(t149 < draco_sum2) && !(draco_sum2 < t149) && !(t148 < draco_sum);
+    const bool t154 = !(t150 < draco_sum3) && !(draco_sum3 < t150) && (draco_sum2 < t149 || t153);
+    const bool t155 = !(t151 < draco_sum4) && !(draco_sum4 < t151) && (draco_sum3 < t150 || t154);
+    const bool t156 = !(t152 < 1u) || (draco_sum4 < t151 || t155);
+    const uint32_t t157 = t148 + 0x10000u - draco_sum - 0u;
+    const uint32_t t158 = t149 + 0x10000u - draco_sum2 - (1u - (t157 >> 16u));
+    const uint32_t t159 = t150 + 0x10000u - draco_sum3 - (1u - (t158 >> 16u));
+    const uint32_t t160 = t156 ? t158 & 0xffffu : t149;
+    const uint32_t t161 = t156 ? t159 & 0xffffu : t150;
+    const uint32_t t162 = t156
+        ? (t151 + 0x10000u - draco_sum4 - (1u - (t159 >> 16u))) & 0xffffu
+        : t151;
+    const uint32_t draco_digit3 = t126 + (t143 ? 1u : 0u) + (t156 ? 1u : 0u);
+    const float t163 = (float)t162 * 1.8446744e19f;
+    const float t164 = (float)t161 * 281474980000000.0f;
+    const float t165 = (float)t160 * 4294967300.0f;
+    const float t166 = floorf((t163 + t164 + t165) * draco_inverse) - 1.0f;
+    const uint32_t t167 = (uint32_t)(t166 >= 0.0f ? t166 : 0.0f);
+    const uint32_t t168 = draco_sum * t167;
+    const uint32_t t169 = draco_sum2 * t167 + (t168 >> 16u);
+    const uint32_t t170 = draco_sum3 * t167 + (t169 >> 16u);
+    const uint32_t t171 = draco_sum4 * t167 + (t170 >> 16u);
+    const uint32_t t172 = 0x10000u - (t168 & 0xffffu) - 0u;
+    const uint32_t t173 = t172 & 0xffffu;
+    const uint32_t t174 = (t156 ? t157 & 0xffffu : t148)
+        + 0x10000u
+        - (t169 & 0xffffu)
+        - (1u - (t172 >> 16u));
+    const uint32_t t175 = t174 & 0xffffu;
+    const uint32_t t176 = t160 + 0x10000u - (t170 & 0xffffu) - (1u - (t174 >> 16u));
+    const uint32_t t177 = t176 & 0xffffu;
+    const uint32_t t178 = t161 + 0x10000u - (t171 & 0xffffu) - (1u - (t176 >> 16u));
+    const uint32_t t179 = t178 & 0xffffu;
+    const uint32_t t180 = (t162 + 0x10000u - (t171 >> 16u) - (1u - (t178 >> 16u))) & 0xffffu;
+    const bool t181 = !(t175 < draco_sum2) && !(draco_sum2 < t175) && !(t173 < draco_sum);
+    const bool t182 = !(t177 < draco_sum3) && !(draco_sum3 < t177) && (draco_sum2 < t175 || t181);
+    const bool t183 = !(t179 < draco_sum4) && !(draco_sum4 < t179) && (draco_sum3 < t177 || t182);
+    const bool t184 = !(t180 < 1u) || (draco_sum4 < t179 || t183);
+    const uint32_t t185 = t173 + 0x10000u - draco_sum - 0u;
+    const uint32_t t186 = t175 + 0x10000u - draco_sum2 - (1u - (t185 >> 16u));
+    const uint32_t t187 = t177 + 0x10000u - draco_sum3 - (1u - (t186 >> 16u));
+    const uint32_t t188 = t179 + 0x10000u - draco_sum4 - (1u - (t187 >> 16u));
+    const uint32_t t189 = t184 ? t185 & 0xffffu : t173;
+    const uint32_t t190 = t184 ? t186 & 0xffffu : t175;
+    const uint32_t t191 = t184 ? t187 & 0xffffu : t177;
+    const uint32_t t192 = t184 ? t188 & 0xffffu : t179;
+    const uint32_t t193 = t184 ? (t180 + 0x10000u - 0u - (1u - (t188 >> 16u))) & 0xffffu : t180;
+    const bool t194 = !(t190 < draco_sum2) && !(draco_sum2 < t190) && !(t189 < draco_sum);
+    const bool t195 = !(t191 < draco_sum3) && !(draco_sum3 < t191) && (draco_sum2 < t190 || t194);
+    const bool t196 = !(t192 < draco_sum4) && !(draco_sum4 < t192) && (draco_sum3 < t191 || t195);
+    const bool t197 = !(t193 < 1u) || (draco_sum4 < t192 || t196);
+    const uint32_t t198 = t189 + 0x10000u - draco_sum - 0u;
+    const uint32_t t199 = t190 + 0x10000u - draco_sum2 - (1u - (t198 >> 16u));
+    const uint32_t t200 = t191 + 0x10000u - draco_sum3 - (1u - (t199 >> 16u));
+    const uint32_t t201 = t197
+        ? (t192 + 0x10000u - draco_sum4 - (1u - (t200 >> 16u))) & 0xffffu
+        : t192;
+    const uint32_t draco_digit4 = t167 + (t184 ? 1u : 0u) + (t197 ? 1u : 0u);
+    const uint32_t t202 = (t197 ? t198 & 0xffffu : t189)
+        | (t197 ? t199 & 0xffffu : t190)
+        | (t197 ? t200 & 0xffffu : t191);
+    const bool t203 = !((t202 | t201) < 1u);
+    const uint32_t t204 = draco_digit4 & 7u;
+    const bool t205 = 4u < t204;
+    const bool t206 = !(t204 < 4u) && !t205 && (t203 || !(((draco_digit4 >> 3u) & 1u) < 1u));
+    const uint32_t t207 = draco_digit4 & 3u;
+    const bool t208 = 2u < t207;
+    const bool t209 = !(t207 < 2u) && !t208 && (t203 || !(((draco_digit4 >> 2u) & 1u) < 1u));
+    const uint32_t t210 = draco_digit4 & 1u;
+    const bool t211 = 1u < t210;
+    const bool t212 = !(t210 < 1u) && !t211 && (t203 || !(((draco_digit4 >> 1u) & 1u) < 1u));
+    const uint32_t t213 = !(draco_digit < 64u)
+        ? (draco_digit4 & 0xfffffffcu) + (t208 || t209 ? 4u : 0u)
+        : (draco_digit4 & 0xfffffffeu) + (t211 || t212 ? 2u : 0u);
+    const uint32_t t214 = !(draco_digit < 128u)
+        ? (draco_digit4 & 0xfffffff8u) + (t205 || t206 ? 8u : 0u)
+        : t213;
+    const uint32_t t215 = draco_digit3 + (t214 >> 16u);
+    const uint32_t draco_recip = t214 & 0xffffu;
+    const uint32_t t216 = draco_digit2 + (t215 >> 16u);
+    const uint32_t draco_recip2 = t215 & 0xffffu;
+    const uint32_t draco_recip3 = draco_digit + (t216 >> 16u);
+    const uint32_t draco_recip4 = t216 & 0xffffu;
+    const uint32_t t217 = unitpack_bits_of(draco_scaled.x);
+    const uint32_t t218 = (t217 & 0x7fffffu) + 0x800000u;
+    const uint32_t t219 = t218 & 0xffffu;
+    const uint32_t t220 = draco_recip * t219;
+    const uint32_t t221 = draco_recip2 * t219 + (t220 >> 16u);
+    const uint32_t t222 = draco_recip4 * t219 + (t221 >> 16u);
+    const uint32_t t223 = draco_recip3 * t219 + (t222 >> 16u);
+    const uint32_t t224 = t220 & 0xffffu;
+    const uint32_t t225 = t218 >> 16u;
+    const uint32_t t226 = draco_recip * t225;
+    const uint32_t t227 = draco_recip2 * t225 + (t226 >> 16u);
+    const uint32_t t228 = draco_recip4 * t225 + (t227 >> 16u);
+    const uint32_t t229 = draco_recip3 * t225 + (t228 >> 16u);
+    const uint32_t t230 = (t221 & 0xffffu) + (t226 & 0xffffu) + (t224 >> 16u);
+    const uint32_t t231 = (t222 & 0xffffu) + (t227 & 0xffffu) + (t230 >> 16u);
+    const uint32_t t232 = t230 & 0xffffu;
+    const uint32_t t233 = (t223 & 0xffffu) + (t228 & 0xffffu) + (t231 >> 16u);
+    const uint32_t t234 = (t223 >> 16u) + (t229 & 0xffffu) + (t233 >> 16u);
+    const uint32_t t235 = t234 & 0xffffu;
+    const bool t236 = !((t224 & 0xffffu) < 1u);
+    const bool t237 = !(t235 < 0x2000u);
+    const bool t238 = !(t235 < 0x4000u);
+    const bool t239 = !(t235 < 0x8000u);
+    const uint32_t t240 = t232 & 0x7ffu;
+    const bool t241 = 0x400u < t240;
+    const bool t242 = !(t240 < 0x400u) && !t241 && (t236 || !(((t232 >> 11u) & 1u) < 1u));
+    const uint32_t t243 = t232 & 0x3ffu;
+    const bool t244 = 0x200u < t243;
+    const bool t245 = !(t243 < 0x200u) && !t244 && (t236 || !(((t232 >> 10u) & 1u) < 1u));
+    const uint32_t t246 = t232 & 0x1ffu;
+    const bool t247 = 0x100u < t246;
+    const bool t248 = !(t246 < 0x100u) && !t247 && (t236 || !(((t232 >> 9u) & 1u) < 1u));
+    const uint32_t t249 = t232 & 255u;
+    const bool t250 = 128u < t249;
+    const bool t251 = !(t249 < 128u) && !t250 && (t236 || !(((t232 >> 8u) & 1u) < 1u));
+    const uint32_t t252 = t237
+        ? (t232 & 0xfffffe00u) + (t247 || t248 ? 0x200u : 0u)
+        : (t232 & 0xffffff00u) + (t250 || t251 ? 0x100u : 0u);
+    const uint32_t t253 = t239
+        ? (t232 & 0xfffff800u) + (t241 || t242 ? 0x800u : 0u)
+        : (t238 ? (t232 & 0xfffffc00u) + (t244 || t245 ? 0x400u : 0u) : t252);
+    const uint32_t t254 = (t231 & 0xffffu) + (t253 >> 16u);
+    const uint32_t t255 = t253 & 0xffffu;
+    const uint32_t t256 = (t233 & 0xffffu) + (t254 >> 16u);
+    const uint32_t t257 = t254 & 0xffffu;
+    const uint32_t t258 = t235 + (t256 >> 16u);
+    const uint32_t t259 = t256 & 0xffffu;
+    const uint32_t t260 = (t229 >> 16u) + (t234 >> 16u) + (t258 >> 16u);
+    const uint32_t t261 = t258 & 0xffffu;
+    const uint32_t t262 = t237
+        ? ((t255 >> 9u) | (t257 << 7u)) & 0xffffu
+        : ((t255 >> 8u) | (t257 << 8u)) & 0xffffu;
+    const uint32_t t263 = t239
+        ? ((t255 >> 11u) | (t257 << 5u)) & 0xffffu
+        : (t238 ? ((t255 >> 10u) | (t257 << 6u)) & 0xffffu : t262);
+    const uint32_t t264 = t237
+        ? ((t257 >> 9u) | (t259 << 7u)) & 0xffffu
+        : ((t257 >> 8u) | (t259 << 8u)) & 0xffffu;
+    const uint32_t t265 = t239
+        ? ((t257 >> 11u) | (t259 << 5u)) & 0xffffu
+        : (t238 ? ((t257 >> 10u) | (t259 << 6u)) & 0xffffu : t264);
+    const uint32_t t266 = t237
+        ? ((t259 >> 9u) | (t261 << 7u)) & 0xffffu
+        : ((t259 >> 8u) | (t261 << 8u)) & 0xffffu;
+    const uint32_t t267 = t239
+        ? ((t259 >> 11u) | (t261 << 5u)) & 0xffffu
+        : (t238 ? ((t259 >> 10u) | (t261 << 6u)) & 0xffffu : t266);
+    const uint32_t t268 = t237 ? (t261 >> 9u) | (t260 << 7u) : (t261 >> 8u) | (t260 << 8u);
+    const uint32_t t269 = t239
+        ? (t261 >> 11u) | (t260 << 5u)
+        : (t238 ? (t261 >> 10u) | (t260 << 6u) : t268);
+    const uint32_t t270 = t263 * 0x1fffu;
+    const uint32_t t271 = t265 * 0x1fffu + (t270 >> 16u);
+    const uint32_t t272 = t267 * 0x1fffu + (t271 >> 16u);
+    const uint32_t t273 = t269 * 0x1fffu + (t272 >> 16u);
+    const uint32_t t274 = t270 & 0xffffu;
+    const uint32_t t275 = t273 >> 16u;
+    const uint32_t t276 = t274 & 0x1fffu;
+    const bool t277 = 0x1000u < t276;
+    const bool t278 = !(t276 < 0x1000u) && !t277 && !(((t274 >> 13u) & 1u) < 1u);
+    const uint32_t t279 = t274 & 0xfffu;
+    const bool t280 = 0x800u < t279;
+    const bool t281 = !(t279 < 0x800u) && !t280 && !(((t274 >> 12u) & 1u) < 1u);
+    const uint32_t t282 = !((t275 >> 1u) < 1u)
+        ? (t274 & 0xffffe000u) + (t277 || t278 ? 0x2000u : 0u)
+        : (t274 & 0xfffff000u) + (t280 || t281 ? 0x1000u : 0u);
+    const uint32_t t283 = (t271 & 0xffffu) + (t282 >> 16u);
+    const uint32_t t284 = (t272 & 0xffffu) + (t283 >> 16u);
+    const uint32_t t285 = (t273 & 0xffffu) + (t284 >> 16u);
+    const uint32_t t286 = t284 & 0xffffu;
+    const uint32_t t287 = (t286 >> 11u)
+        + ((t285 & 0xffffu) << 5u)
+        + ((t275 + (t285 >> 16u)) << 21u);
+    const bool t288 = !(((t286 & 0x7ffu) | (t283 & 0xffffu) | (t282 & 0xffffu)) < 1u);
+    const uint32_t t289 = (t217 >> 23u) + (t239 ? 27u : (t238 ? 26u : (t237 ? 25u : 24u))) + 43u;
+    const bool t290 = !(t289 < 81u);
+    const float draco_head = t290
+        ? (float)t287 * unitpack_float_of((t290 ? t289 - 80u : 1u) << 23u)
+        : 0.0f;
+    const float t291 = 0.5f - draco_head;
+    const float floor_t291 = floorf(t291);
+    const float i0 = v.x < 0.0f
+        ? floor_t291 - (t291 == floor_t291 && t288 ? 1.0f : 0.0f)
+        : floorf(draco_head + 0.5f);
+    const uint32_t t292 = unitpack_bits_of(draco_scaled.y);
+    const uint32_t t293 = (t292 & 0x7fffffu) + 0x800000u;
+    const uint32_t t294 = t293 & 0xffffu;
+    const uint32_t t295 = draco_recip * t294;
+    const uint32_t t296 = draco_recip2 * t294 + (t295 >> 16u);
+    const uint32_t t297 = draco_recip4 * t294 + (t296 >> 16u);
+    const uint32_t t298 = draco_recip3 * t294 + (t297 >> 16u);
+    const uint32_t t299 = t295 & 0xffffu;
+    const uint32_t t300 = t293 >> 16u;
+    const uint32_t t301 = draco_recip * t300;
+    const uint32_t t302 = draco_recip2 * t300 + (t301 >> 16u);
+    const uint32_t t303 = draco_recip4 * t300 + (t302 >> 16u);
+    const uint32_t t304 = draco_recip3 * t300 + (t303 >> 16u);
+    const uint32_t t305 = (t296 & 0xffffu) + (t301 & 0xffffu) + (t299 >> 16u);
+    const uint32_t t306 = (t297 & 0xffffu) + (t302 & 0xffffu) + (t305 >> 16u);
+    const uint32_t t307 = t305 & 0xffffu;
+    const uint32_t t308 = (t298 & 0xffffu) + (t303 & 0xffffu) + (t306 >> 16u);
+    const uint32_t t309 = (t298 >> 16u) + (t304 & 0xffffu) + (t308 >> 16u);
+    const uint32_t t310 = t309 & 0xffffu;
+    const bool t311 = !((t299 & 0xffffu) < 1u);
+    const bool t312 = !(t310 < 0x2000u);
+    const bool t313 = !(t310 < 0x4000u);
+    const bool t314 = !(t310 < 0x8000u);
+    const uint32_t t315 = t307 & 0x7ffu;
+    const bool t316 = 0x400u < t315;
+    const bool t317 = !(t315 < 0x400u) && !t316 && (t311 || !(((t307 >> 11u) & 1u) < 1u));
+    const uint32_t t318 = t307 & 0x3ffu;
+    const bool t319 = 0x200u < t318;
+    const bool t320 = !(t318 < 0x200u) && !t319 && (t311 || !(((t307 >> 10u) & 1u) < 1u));
+    const uint32_t t321 = t307 & 0x1ffu;
+    const bool t322 = 0x100u < t321;
+    const bool t323 = !(t321 < 0x100u) && !t322 && (t311 || !(((t307 >> 9u) & 1u) < 1u));
+    const uint32_t t324 = t307 & 255u;
+    const bool t325 = 128u < t324;
+    const bool t326 = !(t324 < 128u) && !t325 && (t311 || !(((t307 >> 8u) & 1u) < 1u));
+    const uint32_t t327 = t312
+        ? (t307 & 0xfffffe00u) + (t322 || t323 ? 0x200u : 0u)
+        : (t307 & 0xffffff00u) + (t325 || t326 ? 0x100u : 0u);
+    const uint32_t t328 = t314
+        ? (t307 & 0xfffff800u) + (t316 || t317 ? 0x800u : 0u)
+        : (t313 ? (t307 & 0xfffffc00u) + (t319 || t320 ? 0x400u : 0u) : t327);
+    const uint32_t t329 = (t306 & 0xffffu) + (t328 >> 16u);
+    const uint32_t t330 = t328 & 0xffffu;
+    const uint32_t t331 = (t308 & 0xffffu) + (t329 >> 16u);
+    const uint32_t t332 = t329 & 0xffffu;
+    const uint32_t t333 = t310 + (t331 >> 16u);
+    const uint32_t t334 = t331 & 0xffffu;
+    const uint32_t t335 = (t304 >> 16u) + (t309 >> 16u) + (t333 >> 16u);
+    const uint32_t t336 = t333 & 0xffffu;
+    const uint32_t t337 = t312
+        ? ((t330 >> 9u) | (t332 << 7u)) & 0xffffu
+        : ((t330 >> 8u) | (t332 << 8u)) & 0xffffu;
+    const uint32_t t338 = t314
+        ? ((t330 >> 11u) | (t332 << 5u)) & 0xffffu
+        : (t313 ? ((t330 >> 10u) | (t332 << 6u)) & 0xffffu : t337);
+    const uint32_t t339 = t312
+        ? ((t332 >> 9u) | (t334 << 7u)) & 0xffffu
+        : ((t332 >> 8u) | (t334 << 8u)) & 0xffffu;
+    const uint32_t t340 = t314
+        ? ((t332 >> 11u) | (t334 << 5u)) & 0xffffu
+        : (t313 ? ((t332 >> 10u) | (t334 << 6u)) & 0xffffu : t339);
+    const uint32_t t341 = t312
+        ? ((t334 >> 9u) | (t336 << 7u)) & 0xffffu
+        : ((t334 >> 8u) | (t336 << 8u)) & 0xffffu;
+    const uint32_t t342 = t314
+        ? ((t334 >> 11u) | (t336 << 5u)) & 0xffffu
+        : (t313 ? ((t334 >> 10u) | (t336 << 6u)) & 0xffffu : t341);
+    const uint32_t t343 = t312 ? (t336 >> 9u) | (t335 << 7u) : (t336 >> 8u) | (t335 << 8u);
+    const uint32_t t344 = t314
+        ? (t336 >> 11u) | (t335 << 5u)
+        : (t313 ? (t336 >> 10u) | (t335 << 6u) : t343);
+    const uint32_t t345 = t338 * 0x1fffu;
+    const uint32_t t346 = t340 * 0x1fffu + (t345 >> 16u);
+    const uint32_t t347 = t342 * 0x1fffu + (t346 >> 16u);
+    const uint32_t t348 = t344 * 0x1fffu + (t347 >> 16u);
+    const uint32_t t349 = t345 & 0xffffu;
+    const uint32_t t350 = t348 >> 16u;
+    const uint32_t t351 = t349 & 0x1fffu;
+    const bool t352 = 0x1000u < t351;
+    const bool t353 = !(t351 < 0x1000u) && !t352 && !(((t349 >> 13u) & 1u) < 1u);
+    const uint32_t t354 = t349 & 0xfffu;
+    const bool t355 = 0x800u < t354;
+    const bool t356 = !(t354 < 0x800u) && !t355 && !(((t349 >> 12u) & 1u) < 1u);
+    const uint32_t t357 = !((t350 >> 1u) < 1u)
+        ? (t349 & 0xffffe000u) + (t352 || t353 ? 0x2000u : 0u)
+        : (t349 & 0xfffff000u) + (t355 || t356 ? 0x1000u : 0u);
+    const uint32_t t358 = (t346 & 0xffffu) + (t357 >> 16u);
+    const uint32_t t359 = (t347 & 0xffffu) + (t358 >> 16u);
+    const uint32_t t360 = (t348 & 0xffffu) + (t359 >> 16u);
+    const uint32_t t361 = t359 & 0xffffu;
+    const uint32_t t362 = (t361 >> 11u)
+        + ((t360 & 0xffffu) << 5u)
+        + ((t350 + (t360 >> 16u)) << 21u);
+    const bool t363 = !(((t361 & 0x7ffu) | (t358 & 0xffffu) | (t357 & 0xffffu)) < 1u);
+    const uint32_t t364 = (t292 >> 23u) + (t314 ? 27u : (t313 ? 26u : (t312 ? 25u : 24u))) + 43u;
+    const bool t365 = !(t364 < 81u);
+    const float draco_head2 = t365
+        ? (float)t362 * unitpack_float_of((t365 ? t364 - 80u : 1u) << 23u)
+        : 0.0f;
+    const float t366 = floorf(draco_head2 + 0.5f);
+    const float t367 = 0.5f - draco_head2;
+    const float floor_t367 = floorf(t367);
+    const float t368 = floor_t367 - (t367 == floor_t367 && t363 ? 1.0f : 0.0f);
+    const float i1 = v.y < 0.0f ? t368 : t366;
+    const bool t369 = !(draco_sum2 < 27611u) && !(27611u < draco_sum2) && 0x1a00u < draco_sum;
+    const bool t370 = !(draco_sum3 < 61249u)
+        && !(61249u < draco_sum3)
+        && (27611u < draco_sum2 || t369);
+    const bool t371 = !(draco_sum4 < 8589u)
+        && !(8589u < draco_sum4)
+        && (61249u < draco_sum3 || t370);
+    const bool t372 = !(t39 < 107u) && !(107u < t39) && (8589u < draco_sum4 || t371);
+    const bool t373 = !(draco_sum2 < 55222u) && !(55222u < draco_sum2) && 0x3400u < draco_sum;
+    const bool t374 = !(draco_sum3 < 56962u)
+        && !(56962u < draco_sum3)
+        && (55222u < draco_sum2 || t373);
+    const bool t375 = !(draco_sum4 < 17179u)
+        && !(17179u < draco_sum4)
+        && (56962u < draco_sum3 || t374);
+    const bool t376 = !(t39 < 106u) && !(106u < t39) && (17179u < draco_sum4 || t375);
+    const bool t377 = !(draco_sum2 < 44908u) && !(44908u < draco_sum2) && 0x6800u < draco_sum;
+    const bool t378 = !(draco_sum3 < 48389u)
+        && !(48389u < draco_sum3)
+        && (44908u < draco_sum2 || t377);
+    const bool t379 = !(draco_sum4 < 34359u)
+        && !(34359u < draco_sum4)
+        && (48389u < draco_sum3 || t378);
+    const bool t380 = !(t39 < 105u) && !(105u < t39) && (34359u < draco_sum4 || t379);
+    const bool t381 = ok && (!(t39 < 108u) || t372 || t376 || t380);
+    const float i2 = 8191.0f - fabsf(i0) - fabsf(i1);
+    const float t382 = i1 > 0.0f ? i1 + i2 : i1 - i2;
+    const float t383 = -(i2 < 0.0f ? 0.0f : i2);
+    const bool t384 = i0 >= 0.0f;
+    const unitpack_vec2 t385 = {
+        i2 < 0.0f ? t382 : (v.y < 0.0f ? t368 : t366),
+        v.z < 0.0f ? t383 : (i2 < 0.0f ? 0.0f : i2)
     };
-    const unitpack_vec2 t98 = { v.z < 0.0f ? t93 : t97.x, i2 < 0.0f ? t92 : t97.y };
+    const unitpack_vec2 t386 = {
+        v.z < 0.0f ? t383 : (i2 < 0.0f ? 0.0f : i2),
+        i2 < 0.0f ? t382 : (v.y < 0.0f ? t368 : t366)
+    };
     const unitpack_vec2 st = {
-        t94 ? t96.x + 8191.0f : (t96.x < 0.0f ? fabsf(t98.x) : 16382.0f - fabsf(t98.x)),
-        t94 ? t96.y + 8191.0f : (t96.y < 0.0f ? fabsf(t98.y) : 16382.0f - fabsf(t98.y))
+        t384 ? t385.x + 8191.0f : (t385.x < 0.0f ? fabsf(t386.x) : 16382.0f - fabsf(t386.x)),
+        t384 ? t385.y + 8191.0f : (t385.y < 0.0f ? fabsf(t386.y) : 16382.0f - fabsf(t386.y))
     };
-    const bool t99 = (st.x == 0.0f && (st.y == 0.0f || st.y == 16382.0f))
+    const bool t387 = (st.x == 0.0f && (st.y == 0.0f || st.y == 16382.0f))
         || (st.x == 16382.0f && st.y == 0.0f);
-    const bool t100 = (st.x == 0.0f && st.y > 8191.0f) || (st.x == 16382.0f && st.y < 8191.0f);
-    const bool t101 = (st.y == 16382.0f && st.x < 8191.0f) || (st.y == 0.0f && st.x > 8191.0f);
-    const bool t102 = (st.x == 0.0f && st.y > 8191.0f) || (st.x == 16382.0f && st.y < 8191.0f);
-    const unitpack_uvec3 t103 = {
+    const bool t388 = (st.x == 0.0f && st.y > 8191.0f) || (st.x == 16382.0f && st.y < 8191.0f);
+    const bool t389 = (st.y == 16382.0f && st.x < 8191.0f) || (st.y == 0.0f && st.x > 8191.0f);
+    const bool t390 = (st.x == 0.0f && st.y > 8191.0f) || (st.x == 16382.0f && st.y < 8191.0f);
+    const unitpack_uvec3 t391 = {
         unitpack_bits_of(v.x) & 0x7fffffffu,
         unitpack_bits_of(v.y) & 0x7fffffffu,
         unitpack_bits_of(v.z) & 0x7fffffffu
     };
-    const bool t104 = !(t103.x < 0x7f800001u) || !(t103.y < 0x7f800001u) || !(t103.z < 0x7f800001u);
-    const bool t105 = (!(t103.x < 0x7f800000u) && !!(t103.x < 0x7f800001u))
-        || (!(t103.y < 0x7f800000u) && !!(t103.y < 0x7f800001u));
-    const bool t106 = t105 || (!(t103.z < 0x7f800000u) && !!(t103.z < 0x7f800001u));
-    const unitpack_vec2 t107 = {
-        t100 ? st.x : (t101 ? 16382.0f - st.x : st.x),
-        t102 ? 16382.0f - st.y : st.y
+    const bool t392 = !(t391.x < 0x7f800001u) || !(t391.y < 0x7f800001u) || !(t391.z < 0x7f800001u);
+    const bool t393 = (!(t391.x < 0x7f800000u) && !!(t391.x < 0x7f800001u))
+        || (!(t391.y < 0x7f800000u) && !!(t391.y < 0x7f800001u));
+    const bool t394 = t393 || (!(t391.z < 0x7f800000u) && !!(t391.z < 0x7f800001u));
+    const unitpack_vec2 t395 = {
+        t388 ? st.x : (t389 ? 16382.0f - st.x : st.x),
+        t390 ? 16382.0f - st.y : st.y
     };
     const unitpack_vec2 codes = {
-        t1 ? (t99 ? 16382.0f : t107.x) : 8191.0f,
-        t1 ? (t99 ? 16382.0f : t107.y) : (t106 && !t104 ? 16382.0f : 8191.0f)
+        t381 ? (t387 ? 16382.0f : t395.x) : 8191.0f,
+        t381 ? (t387 ? 16382.0f : t395.y) : (t394 && !t392 ? 16382.0f : 8191.0f)
     };
     return (uint32_t)codes.x | ((uint32_t)codes.y << 14u);
 }

@@ -65,7 +65,6 @@ fn unitpack_draco_oct16_decode(code: u32) -> vec3<f32> {
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 fn unitpack_draco_oct16_round_codes(v: vec3<f32>) -> vec2<f32> {
-    let abs_v = abs(v);
     let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
@@ -76,163 +75,570 @@ fn unitpack_draco_oct16_round_codes(v: vec3<f32>) -> vec2<f32> {
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
     let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
-    let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
-    let magnitude = abs(w2);
-    let l1 = magnitude.x + magnitude.y + magnitude.z;
-    let fixed2 = magnitude.x * 4096.0f;
-    let floor_fixed2 = floor(fixed2);
-    let fixed_rest = (fixed2 - floor_fixed2) * 65536.0f;
-    let floor_fixed_rest = floor(fixed_rest);
-    let t1 = u32(floor((fixed_rest - floor_fixed_rest) * 65536.0f));
-    let floor_fixed_rest_u = u32(floor_fixed_rest);
-    let floor_fixed2_u = u32(floor_fixed2);
-    let fixed3 = magnitude.y * 4096.0f;
-    let floor_fixed3 = floor(fixed3);
-    let fixed_rest2 = (fixed3 - floor_fixed3) * 65536.0f;
-    let floor_fixed_rest2 = floor(fixed_rest2);
-    let t2 = u32(floor((fixed_rest2 - floor_fixed_rest2) * 65536.0f));
-    let floor_fixed_rest2_u = u32(floor_fixed_rest2);
-    let floor_fixed3_u = u32(floor_fixed3);
-    let fixed4 = magnitude.z * 4096.0f;
-    let floor_fixed4 = floor(fixed4);
-    let fixed_rest3 = (fixed4 - floor_fixed4) * 65536.0f;
-    let floor_fixed_rest3 = floor(fixed_rest3);
-    let t3 = t1 + t2 + u32(floor((fixed_rest3 - floor_fixed_rest3) * 65536.0f));
-    let t4 = floor_fixed_rest_u + floor_fixed_rest2_u + u32(floor_fixed_rest3) + (t3 >> 16u);
-    let t5 = floor_fixed2_u + floor_fixed3_u + u32(floor_fixed4) + (t4 >> 16u);
-    let t6 = t3 & 0xffffu;
-    let t7 = t4 & 0xffffu;
-    let t8 = round(magnitude.x / l1 * 32767.0f);
-    let estimate = select(32767.0f, t8, t8 <= 32767.0f);
-    let estimate_u = u32(estimate);
-    let t9 = t1 * 0xfffeu;
-    let t10 = floor_fixed_rest_u * 0xfffeu + (t9 >> 16u);
-    let t11 = floor_fixed2_u * 0xfffeu + (t10 >> 16u);
-    let t12 = t9 & 0xffffu;
-    let t13 = t10 & 0xffffu;
-    let t14 = t11 & 0xffffu;
-    let t15 = t11 >> 16u;
-    let t16 = estimate_u + estimate_u + 1u;
-    let t17 = t6 * t16;
-    let t18 = t7 * t16 + (t17 >> 16u);
-    let t19 = t5 * t16 + (t18 >> 16u);
-    let t20 = t17 & 0xffffu;
-    let t21 = t18 & 0xffffu;
-    let t22 = t19 & 0xffffu;
-    let t23 = t19 >> 16u;
-    let t24 = estimate_u + estimate_u - 1u;
-    let t25 = t6 * t24;
-    let t26 = t7 * t24 + (t25 >> 16u);
-    let t27 = t5 * t24 + (t26 >> 16u);
-    let t28 = t25 & 0xffffu;
-    let t29 = t26 & 0xffffu;
-    let t30 = t27 & 0xffffu;
-    let t31 = t27 >> 16u;
-    let t32 = 0.0f > w2.x;
-    let t33 = !(t21 > t13) && !(t13 > t21) && (t12 > t20 || !(t20 > t12));
-    let t34 = !(t22 > t14) && !(t14 > t22) && (t13 > t21 || t33);
-    let t35 = !(t23 > t15) && !(t15 > t23) && (t14 > t22 || t34);
-    let t36 = !(t21 > t13) && !(t13 > t21) && t12 > t20;
-    let t37 = !(t22 > t14) && !(t14 > t22) && (t13 > t21 || t36);
-    let t38 = !(t23 > t15) && !(t15 > t23) && (t14 > t22 || t37);
-    let t39 = ((t15 > t23 || t35) && !t32) || ((t15 > t23 || t38) && t32);
-    let t40 = !(t13 > t29) && !(t29 > t13) && t28 > t12;
-    let t41 = !(t14 > t30) && !(t30 > t14) && (t29 > t13 || t40);
-    let t42 = !(t15 > t31) && !(t31 > t15) && (t30 > t14 || t41);
-    let t43 = !(t13 > t29) && !(t29 > t13) && (t28 > t12 || !(t12 > t28));
-    let t44 = !(t14 > t30) && !(t30 > t14) && (t29 > t13 || t43);
-    let t45 = !(t15 > t31) && !(t31 > t15) && (t30 > t14 || t44);
-    let t46 = ((t31 > t15 || t42) && !t32) || ((t31 > t15 || t45) && t32);
-    let t47 = estimate + select(0.0f, 1.0f, t39) - select(0.0f, 1.0f, estimate > 0.0f && t46);
-    let i0 = select(t47, -t47, t32);
-    let t48 = round(magnitude.y / l1 * 32767.0f);
-    let estimate2 = select(32767.0f, t48, t48 <= 32767.0f);
-    let estimate2_u = u32(estimate2);
-    let t49 = t2 * 0xfffeu;
-    let t50 = floor_fixed_rest2_u * 0xfffeu + (t49 >> 16u);
-    let t51 = floor_fixed3_u * 0xfffeu + (t50 >> 16u);
-    let t52 = t49 & 0xffffu;
-    let t53 = t50 & 0xffffu;
-    let t54 = t51 & 0xffffu;
-    let t55 = t51 >> 16u;
-    let t56 = estimate2_u + estimate2_u + 1u;
-    let t57 = t6 * t56;
-    let t58 = t7 * t56 + (t57 >> 16u);
-    let t59 = t5 * t56 + (t58 >> 16u);
-    let t60 = t57 & 0xffffu;
-    let t61 = t58 & 0xffffu;
-    let t62 = t59 & 0xffffu;
-    let t63 = t59 >> 16u;
-    let t64 = estimate2_u + estimate2_u - 1u;
-    let t65 = t6 * t64;
-    let t66 = t7 * t64 + (t65 >> 16u);
-    let t67 = t5 * t64 + (t66 >> 16u);
-    let t68 = t65 & 0xffffu;
-    let t69 = t66 & 0xffffu;
-    let t70 = t67 & 0xffffu;
-    let t71 = t67 >> 16u;
-    let t72 = 0.0f > w2.y;
-    let t73 = !(t61 > t53) && !(t53 > t61) && (t52 > t60 || !(t60 > t52));
-    let t74 = !(t62 > t54) && !(t54 > t62) && (t53 > t61 || t73);
-    let t75 = !(t63 > t55) && !(t55 > t63) && (t54 > t62 || t74);
-    let t76 = !(t61 > t53) && !(t53 > t61) && t52 > t60;
-    let t77 = !(t62 > t54) && !(t54 > t62) && (t53 > t61 || t76);
-    let t78 = !(t63 > t55) && !(t55 > t63) && (t54 > t62 || t77);
-    let t79 = ((t55 > t63 || t75) && !t72) || ((t55 > t63 || t78) && t72);
-    let t80 = !(t53 > t69) && !(t69 > t53) && t68 > t52;
-    let t81 = !(t54 > t70) && !(t70 > t54) && (t69 > t53 || t80);
-    let t82 = !(t55 > t71) && !(t71 > t55) && (t70 > t54 || t81);
-    let t83 = !(t53 > t69) && !(t69 > t53) && (t68 > t52 || !(t52 > t68));
-    let t84 = !(t54 > t70) && !(t70 > t54) && (t69 > t53 || t83);
-    let t85 = !(t55 > t71) && !(t71 > t55) && (t70 > t54 || t84);
-    let t86 = ((t71 > t55 || t82) && !t72) || ((t71 > t55 || t85) && t72);
-    let t87 = estimate2 + select(0.0f, 1.0f, t79);
-    let t88 = select(0.0f, 1.0f, estimate2 > 0.0f && t86);
-    let t89 = t87 - t88;
-    let neg_t89 = -t89;
-    let i1 = select(t89, neg_t89, t72);
-    let t90 = 32767.0f - abs(i0);
-    let abs_i1 = abs(i1);
-    let i2 = t90 - abs_i1;
-    let t91 = select(i1 - i2, i1 + i2, i1 > 0.0f);
-    let t92 = -select(i2, 0.0f, 0.0f > i2);
-    let t93 = select(
-        vec2<f32>(t87, t90) - vec2<f32>(t88, abs_i1),
-        vec2<f32>(neg_t89, 0.0f),
-        vec2<f32>(0.0f) > vec2<f32>(w2.y, i2)
+    let t1 = abs(select(vec3<f32>(2.0f, 0.0f, 0.0f), scaled, ok));
+    let draco_scaled = select(t1, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(t1));
+    let draco_larger = select(draco_scaled.y, draco_scaled.x, draco_scaled.x >= draco_scaled.y);
+    let t2 = bitcast<u32>(draco_larger) >> 23u;
+    let t3 = select(t2, 67u, 67u > t2);
+    let t4 = round(
+        select(draco_scaled.y, draco_scaled.x, draco_scaled.x <= draco_scaled.y)
+            * bitcast<f32>((306u - t3) << 23u)
     );
-    let t94 = select(t93, vec2<f32>(t91, t92), vec2<f32>(0.0f) > vec2<f32>(i2, v.z));
-    let t95 = select(
-        vec2<f32>(t90, t87) - vec2<f32>(abs_i1, t88),
-        vec2<f32>(0.0f, neg_t89),
-        vec2<f32>(0.0f) > vec2<f32>(i2, w2.y)
+    let draco_smaller = t4 * bitcast<f32>((t3 - 52u) << 23u);
+    let t5 = draco_larger * 8192.0f;
+    let floor_t5 = floor(t5);
+    let t6 = (t5 - floor_t5) * 65536.0f;
+    let floor_t6 = floor(t6);
+    let t7 = (t6 - floor_t6) * 65536.0f;
+    let floor_t7 = floor(t7);
+    let t8 = (t7 - floor_t7) * 65536.0f;
+    let floor_t8 = floor(t8);
+    let t9 = draco_smaller * 8192.0f;
+    let floor_t9 = floor(t9);
+    let t10 = (t9 - floor_t9) * 65536.0f;
+    let floor_t10 = floor(t10);
+    let t11 = (t10 - floor_t10) * 65536.0f;
+    let floor_t11 = floor(t11);
+    let t12 = (t11 - floor_t11) * 65536.0f;
+    let floor_t12 = floor(t12);
+    let t13 = draco_scaled.z * 8192.0f;
+    let floor_t13 = floor(t13);
+    let t14 = (t13 - floor_t13) * 65536.0f;
+    let floor_t14 = floor(t14);
+    let t15 = (t14 - floor_t14) * 65536.0f;
+    let floor_t15 = floor(t15);
+    let t16 = (t15 - floor_t15) * 65536.0f;
+    let floor_t16 = floor(t16);
+    let t17 = t8 > floor_t8 || t12 > floor_t12 || t16 > floor_t16;
+    let t18 = u32(floor_t8) + u32(floor_t12) + u32(floor_t16);
+    let t19 = u32(floor_t7) + u32(floor_t11) + u32(floor_t15) + (t18 >> 16u);
+    let t20 = t18 & 0xffffu;
+    let t21 = u32(floor_t6) + u32(floor_t10) + u32(floor_t14) + (t19 >> 16u);
+    let t22 = u32(floor_t5) + u32(floor_t9) + u32(floor_t13) + (t21 >> 16u);
+    let t23 = t20 & 0xfffu;
+    let t24 = t23 > 0x800u;
+    let t25 = !(0x800u > t23) && !t24 && (t17 || !(1u > ((t20 >> 12u) & 1u)));
+    let t26 = t20 & 0x7ffu;
+    let t27 = t26 > 0x400u;
+    let t28 = !(0x400u > t26) && !t27 && (t17 || !(1u > ((t20 >> 11u) & 1u)));
+    let t29 = t20 & 0x3ffu;
+    let t30 = t29 > 0x200u;
+    let t31 = !(0x200u > t29) && !t30 && (t17 || !(1u > ((t20 >> 10u) & 1u)));
+    let t32 = select(
+        (t20 & 0xfffffc00u) + select(0u, 0x400u, t30 || t31),
+        (t20 & 0xfffff800u) + select(0u, 0x800u, t27 || t28),
+        !(0x8000u > t22)
     );
-    let t96 = select(t95, vec2<f32>(t92, t91), vec2<f32>(0.0f) > vec2<f32>(v.z, i2));
+    let t33 = select(t32, (t20 & 0xfffff000u) + select(0u, 0x1000u, t24 || t25), !(0x10000u > t22));
+    let t34 = (t19 & 0xffffu) + (t33 >> 16u);
+    let t35 = (t21 & 0xffffu) + (t34 >> 16u);
+    let t36 = t34 & 0xffffu;
+    let t37 = t22 + (t35 >> 16u);
+    let t38 = t35 & 0xffffu;
+    let draco_sum = ((t33 & 0xffffu) >> 1u) | ((t36 & 1u) << 15u);
+    let draco_sum2 = (t36 >> 1u) | ((t38 & 1u) << 15u);
+    let draco_sum3 = (t38 >> 1u) | ((t37 & 1u) << 15u);
+    let draco_sum4 = t37 >> 1u;
+    let t39 = 255u - (bitcast<u32>(scale) >> 23u);
+    let t40 = f32(draco_sum4) * 281474980000000.0f
+        + f32(draco_sum3) * 4294967300.0f
+        + f32(draco_sum2) * 65536.0f;
+    let draco_inverse = 1.0f / t40;
+    let t41 = floor(5.902958e20f * draco_inverse) - 1.0f;
+    let t42 = u32(select(0.0f, t41, t41 >= 0.0f));
+    let t43 = draco_sum * t42;
+    let t44 = draco_sum2 * t42 + (t43 >> 16u);
+    let t45 = draco_sum3 * t42 + (t44 >> 16u);
+    let t46 = draco_sum4 * t42 + (t45 >> 16u);
+    let t47 = 0x10000u - (t43 & 0xffffu) - 0u;
+    let t48 = t47 & 0xffffu;
+    let t49 = 0x10000u - (t44 & 0xffffu) - (1u - (t47 >> 16u));
+    let t50 = t49 & 0xffffu;
+    let t51 = 0x10000u - (t45 & 0xffffu) - (1u - (t49 >> 16u));
+    let t52 = t51 & 0xffffu;
+    let t53 = 0x10000u - (t46 & 0xffffu) - (1u - (t51 >> 16u));
+    let t54 = t53 & 0xffffu;
+    let t55 = (0x10020u - (t46 >> 16u) - (1u - (t53 >> 16u))) & 0xffffu;
+    let t56 = !(draco_sum2 > t50) && !(t50 > draco_sum2) && !(draco_sum > t48);
+    let t57 = !(draco_sum3 > t52) && !(t52 > draco_sum3) && (t50 > draco_sum2 || t56);
+    let t58 = !(draco_sum4 > t54) && !(t54 > draco_sum4) && (t52 > draco_sum3 || t57);
+    let t59 = !(1u > t55) || (t54 > draco_sum4 || t58);
+    let t60 = t48 + 0x10000u - draco_sum - 0u;
+    let t61 = t50 + 0x10000u - draco_sum2 - (1u - (t60 >> 16u));
+    let t62 = t52 + 0x10000u - draco_sum3 - (1u - (t61 >> 16u));
+    let t63 = t54 + 0x10000u - draco_sum4 - (1u - (t62 >> 16u));
+    let t64 = select(t48, t60 & 0xffffu, t59);
+    let t65 = select(t50, t61 & 0xffffu, t59);
+    let t66 = select(t52, t62 & 0xffffu, t59);
+    let t67 = select(t54, t63 & 0xffffu, t59);
+    let t68 = select(t55, (t55 + 0x10000u - 0u - (1u - (t63 >> 16u))) & 0xffffu, t59);
+    let t69 = !(draco_sum2 > t65) && !(t65 > draco_sum2) && !(draco_sum > t64);
+    let t70 = !(draco_sum3 > t66) && !(t66 > draco_sum3) && (t65 > draco_sum2 || t69);
+    let t71 = !(draco_sum4 > t67) && !(t67 > draco_sum4) && (t66 > draco_sum3 || t70);
+    let t72 = !(1u > t68) || (t67 > draco_sum4 || t71);
+    let t73 = t64 + 0x10000u - draco_sum - 0u;
+    let t74 = t65 + 0x10000u - draco_sum2 - (1u - (t73 >> 16u));
+    let t75 = t66 + 0x10000u - draco_sum3 - (1u - (t74 >> 16u));
+    let t76 = select(t65, t74 & 0xffffu, t72);
+    let t77 = select(t66, t75 & 0xffffu, t72);
+    let t78 = select(t67, (t67 + 0x10000u - draco_sum4 - (1u - (t75 >> 16u))) & 0xffffu, t72);
+    let draco_digit = t42 + select(0u, 1u, t59) + select(0u, 1u, t72);
+    let t79 = f32(t78) * 1.8446744e19f + f32(t77) * 281474980000000.0f + f32(t76) * 4294967300.0f;
+    let t80 = floor(t79 * draco_inverse) - 1.0f;
+    let t81 = u32(select(0.0f, t80, t80 >= 0.0f));
+    let t82 = draco_sum * t81;
+    let t83 = draco_sum2 * t81 + (t82 >> 16u);
+    let t84 = draco_sum3 * t81 + (t83 >> 16u);
+    let t85 = draco_sum4 * t81 + (t84 >> 16u);
+    let t86 = 0x10000u - (t82 & 0xffffu) - 0u;
+    let t87 = t86 & 0xffffu;
+    let t88 = select(t64, t73 & 0xffffu, t72) + 0x10000u - (t83 & 0xffffu) - (1u - (t86 >> 16u));
+    let t89 = t88 & 0xffffu;
+    let t90 = t76 + 0x10000u - (t84 & 0xffffu) - (1u - (t88 >> 16u));
+    let t91 = t90 & 0xffffu;
+    let t92 = t77 + 0x10000u - (t85 & 0xffffu) - (1u - (t90 >> 16u));
+    let t93 = t92 & 0xffffu;
+    let t94 = (t78 + 0x10000u - (t85 >> 16u) - (1u - (t92 >> 16u))) & 0xffffu;
+    let t95 = !(draco_sum2 > t89) && !(t89 > draco_sum2) && !(draco_sum > t87);
+    let t96 = !(draco_sum3 > t91) && !(t91 > draco_sum3) && (t89 > draco_sum2 || t95);
+    let t97 = !(draco_sum4 > t93) && !(t93 > draco_sum4) && (t91 > draco_sum3 || t96);
+    let t98 = !(1u > t94) || (t93 > draco_sum4 || t97);
+    let t99 = t87 + 0x10000u - draco_sum - 0u;
+    let t100 = t89 + 0x10000u - draco_sum2 - (1u - (t99 >> 16u));
+    let t101 = t91 + 0x10000u - draco_sum3 - (1u - (t100 >> 16u));
+    let t102 = t93 + 0x10000u - draco_sum4 - (1u - (t101 >> 16u));
+    let t103 = select(t87, t99 & 0xffffu, t98);
+    let t104 = select(t89, t100 & 0xffffu, t98);
+    let t105 = select(t91, t101 & 0xffffu, t98);
+    let t106 = select(t93, t102 & 0xffffu, t98);
+    let t107 = select(t94, (t94 + 0x10000u - 0u - (1u - (t102 >> 16u))) & 0xffffu, t98);
+    let t108 = !(draco_sum2 > t104) && !(t104 > draco_sum2) && !(draco_sum > t103);
+    let t109 = !(draco_sum3 > t105) && !(t105 > draco_sum3) && (t104 > draco_sum2 || t108);
+    let t110 = !(draco_sum4 > t106) && !(t106 > draco_sum4) && (t105 > draco_sum3 || t109);
+    let t111 = !(1u > t107) || (t106 > draco_sum4 || t110);
+    let t112 = t103 + 0x10000u - draco_sum - 0u;
+    let t113 = t104 + 0x10000u - draco_sum2 - (1u - (t112 >> 16u));
+    let t114 = t105 + 0x10000u - draco_sum3 - (1u - (t113 >> 16u));
+    let t115 = select(t104, t113 & 0xffffu, t111);
+    let t116 = select(t105, t114 & 0xffffu, t111);
+    let t117 = select(t106, (t106 + 0x10000u - draco_sum4 - (1u - (t114 >> 16u))) & 0xffffu, t111);
+    let draco_digit2 = t81 + select(0u, 1u, t98) + select(0u, 1u, t111);
+    let t118 = f32(t117) * 1.8446744e19f
+        + f32(t116) * 281474980000000.0f
+        + f32(t115) * 4294967300.0f;
+    let t119 = floor(t118 * draco_inverse) - 1.0f;
+    let t120 = u32(select(0.0f, t119, t119 >= 0.0f));
+    let t121 = draco_sum * t120;
+    let t122 = draco_sum2 * t120 + (t121 >> 16u);
+    let t123 = draco_sum3 * t120 + (t122 >> 16u);
+    let t124 = draco_sum4 * t120 + (t123 >> 16u);
+    let t125 = 0x10000u - (t121 & 0xffffu) - 0u;
+    let t126 = t125 & 0xffffu;
+    let t127 = select(t103, t112 & 0xffffu, t111)
+        + 0x10000u
+        - (t122 & 0xffffu)
+        - (1u - (t125 >> 16u));
+    let t128 = t127 & 0xffffu;
+    let t129 = t115 + 0x10000u - (t123 & 0xffffu) - (1u - (t127 >> 16u));
+    let t130 = t129 & 0xffffu;
+    let t131 = t116 + 0x10000u - (t124 & 0xffffu) - (1u - (t129 >> 16u));
+    let t132 = t131 & 0xffffu;
+    let t133 = (t117 + 0x10000u - (t124 >> 16u) - (1u - (t131 >> 16u))) & 0xffffu;
+    let t134 = !(draco_sum2 > t128) && !(t128 > draco_sum2) && !(draco_sum > t126);
+    let t135 = !(draco_sum3 > t130) && !(t130 > draco_sum3) && (t128 > draco_sum2 || t134);
+    let t136 = !(draco_sum4 > t132) && !(t132 > draco_sum4) && (t130 > draco_sum3 || t135);
+    let t137 = !(1u > t133) || (t132 > draco_sum4 || t136);
+    let t138 = t126 + 0x10000u - draco_sum - 0u;
+    let t139 = t128 + 0x10000u - draco_sum2 - (1u - (t138 >> 16u));
+    let t140 = t130 + 0x10000u - draco_sum3 - (1u - (t139 >> 16u));
+    let t141 = t132 + 0x10000u - draco_sum4 - (1u - (t140 >> 16u));
+    let t142 = select(t126, t138 & 0xffffu, t137);
+    let t143 = select(t128, t139 & 0xffffu, t137);
+    let t144 = select(t130, t140 & 0xffffu, t137);
+    let t145 = select(t132, t141 & 0xffffu, t137);
+    let t146 = select(t133, (t133 + 0x10000u - 0u - (1u - (t141 >> 16u))) & 0xffffu, t137);
+    let t147 = !(draco_sum2 > t143) && !(t143 > draco_sum2) && !(draco_sum > t142);
+    let t148 = !(draco_sum3 > t144) && !(t144 > draco_sum3) && (t143 > draco_sum2 || t147);
+    let t149 = !(draco_sum4 > t145) && !(t145 > draco_sum4) && (t144 > draco_sum3 || t148);
+    let t150 = !(1u > t146) || (t145 > draco_sum4 || t149);
+    let t151 = t142 + 0x10000u - draco_sum - 0u;
+    let t152 = t143 + 0x10000u - draco_sum2 - (1u - (t151 >> 16u));
+    let t153 = t144 + 0x10000u - draco_sum3 - (1u - (t152 >> 16u));
+    let t154 = select(t143, t152 & 0xffffu, t150);
+    let t155 = select(t144, t153 & 0xffffu, t150);
+    let t156 = select(t145, (t145 + 0x10000u - draco_sum4 - (1u - (t153 >> 16u))) & 0xffffu, t150);
+    let draco_digit3 = t120 + select(0u, 1u, t137) + select(0u, 1u, t150);
+    let t157 = f32(t156) * 1.8446744e19f
+        + f32(t155) * 281474980000000.0f
+        + f32(t154) * 4294967300.0f;
+    let t158 = floor(t157 * draco_inverse) - 1.0f;
+    let t159 = u32(select(0.0f, t158, t158 >= 0.0f));
+    let t160 = draco_sum * t159;
+    let t161 = draco_sum2 * t159 + (t160 >> 16u);
+    let t162 = draco_sum3 * t159 + (t161 >> 16u);
+    let t163 = draco_sum4 * t159 + (t162 >> 16u);
+    let t164 = 0x10000u - (t160 & 0xffffu) - 0u;
+    let t165 = t164 & 0xffffu;
+    let t166 = select(t142, t151 & 0xffffu, t150)
+        + 0x10000u
+        - (t161 & 0xffffu)
+        - (1u - (t164 >> 16u));
+    let t167 = t166 & 0xffffu;
+    let t168 = t154 + 0x10000u - (t162 & 0xffffu) - (1u - (t166 >> 16u));
+    let t169 = t168 & 0xffffu;
+    let t170 = t155 + 0x10000u - (t163 & 0xffffu) - (1u - (t168 >> 16u));
+    let t171 = t170 & 0xffffu;
+    let t172 = (t156 + 0x10000u - (t163 >> 16u) - (1u - (t170 >> 16u))) & 0xffffu;
+    let t173 = !(draco_sum2 > t167) && !(t167 > draco_sum2) && !(draco_sum > t165);
+    let t174 = !(draco_sum3 > t169) && !(t169 > draco_sum3) && (t167 > draco_sum2 || t173);
+    let t175 = !(draco_sum4 > t171) && !(t171 > draco_sum4) && (t169 > draco_sum3 || t174);
+    let t176 = !(1u > t172) || (t171 > draco_sum4 || t175);
+    let t177 = t165 + 0x10000u - draco_sum - 0u;
+    let t178 = t167 + 0x10000u - draco_sum2 - (1u - (t177 >> 16u));
+    let t179 = t169 + 0x10000u - draco_sum3 - (1u - (t178 >> 16u));
+    let t180 = t171 + 0x10000u - draco_sum4 - (1u - (t179 >> 16u));
+    let t181 = select(t165, t177 & 0xffffu, t176);
+    let t182 = select(t167, t178 & 0xffffu, t176);
+    let t183 = select(t169, t179 & 0xffffu, t176);
+    let t184 = select(t171, t180 & 0xffffu, t176);
+    let t185 = select(t172, (t172 + 0x10000u - 0u - (1u - (t180 >> 16u))) & 0xffffu, t176);
+    let t186 = !(draco_sum2 > t182) && !(t182 > draco_sum2) && !(draco_sum > t181);
+    let t187 = !(draco_sum3 > t183) && !(t183 > draco_sum3) && (t182 > draco_sum2 || t186);
+    let t188 = !(draco_sum4 > t184) && !(t184 > draco_sum4) && (t183 > draco_sum3 || t187);
+    let t189 = !(1u > t185) || (t184 > draco_sum4 || t188);
+    let t190 = t181 + 0x10000u - draco_sum - 0u;
+    let t191 = t182 + 0x10000u - draco_sum2 - (1u - (t190 >> 16u));
+    let t192 = t183 + 0x10000u - draco_sum3 - (1u - (t191 >> 16u));
+    let t193 = select(t184, (t184 + 0x10000u - draco_sum4 - (1u - (t192 >> 16u))) & 0xffffu, t189);
+    let draco_digit4 = t159 + select(0u, 1u, t176) + select(0u, 1u, t189);
+    let t194 = select(t181, t190 & 0xffffu, t189)
+        | select(t182, t191 & 0xffffu, t189)
+        | select(t183, t192 & 0xffffu, t189);
+    let t195 = !(1u > (t194 | t193));
+    let t196 = draco_digit4 & 7u;
+    let t197 = t196 > 4u;
+    let t198 = !(4u > t196) && !t197 && (t195 || !(1u > ((draco_digit4 >> 3u) & 1u)));
+    let t199 = draco_digit4 & 3u;
+    let t200 = t199 > 2u;
+    let t201 = !(2u > t199) && !t200 && (t195 || !(1u > ((draco_digit4 >> 2u) & 1u)));
+    let t202 = draco_digit4 & 1u;
+    let t203 = t202 > 1u;
+    let t204 = !(1u > t202) && !t203 && (t195 || !(1u > ((draco_digit4 >> 1u) & 1u)));
+    let t205 = select(
+        (draco_digit4 & 0xfffffffeu) + select(0u, 2u, t203 || t204),
+        (draco_digit4 & 0xfffffffcu) + select(0u, 4u, t200 || t201),
+        !(64u > draco_digit)
+    );
+    let t206 = select(
+        t205,
+        (draco_digit4 & 0xfffffff8u) + select(0u, 8u, t197 || t198),
+        !(128u > draco_digit)
+    );
+    let t207 = draco_digit3 + (t206 >> 16u);
+    let draco_recip = t206 & 0xffffu;
+    let t208 = draco_digit2 + (t207 >> 16u);
+    let draco_recip2 = t207 & 0xffffu;
+    let draco_recip3 = draco_digit + (t208 >> 16u);
+    let draco_recip4 = t208 & 0xffffu;
+    let t209 = bitcast<u32>(draco_scaled.x);
+    let t210 = (t209 & 0x7fffffu) + 0x800000u;
+    let t211 = t210 & 0xffffu;
+    let t212 = draco_recip * t211;
+    let t213 = draco_recip2 * t211 + (t212 >> 16u);
+    let t214 = draco_recip4 * t211 + (t213 >> 16u);
+    let t215 = draco_recip3 * t211 + (t214 >> 16u);
+    let t216 = t212 & 0xffffu;
+    let t217 = t210 >> 16u;
+    let t218 = draco_recip * t217;
+    let t219 = draco_recip2 * t217 + (t218 >> 16u);
+    let t220 = draco_recip4 * t217 + (t219 >> 16u);
+    let t221 = draco_recip3 * t217 + (t220 >> 16u);
+    let t222 = (t213 & 0xffffu) + (t218 & 0xffffu) + (t216 >> 16u);
+    let t223 = (t214 & 0xffffu) + (t219 & 0xffffu) + (t222 >> 16u);
+    let t224 = t222 & 0xffffu;
+    let t225 = (t215 & 0xffffu) + (t220 & 0xffffu) + (t223 >> 16u);
+    let t226 = (t215 >> 16u) + (t221 & 0xffffu) + (t225 >> 16u);
+    let t227 = t226 & 0xffffu;
+    let t228 = !(1u > (t216 & 0xffffu));
+    let t229 = !(0x2000u > t227);
+    let t230 = !(0x4000u > t227);
+    let t231 = !(0x8000u > t227);
+    let t232 = t224 & 0x7ffu;
+    let t233 = t232 > 0x400u;
+    let t234 = !(0x400u > t232) && !t233 && (t228 || !(1u > ((t224 >> 11u) & 1u)));
+    let t235 = t224 & 0x3ffu;
+    let t236 = t235 > 0x200u;
+    let t237 = !(0x200u > t235) && !t236 && (t228 || !(1u > ((t224 >> 10u) & 1u)));
+    let t238 = t224 & 0x1ffu;
+    let t239 = t238 > 0x100u;
+    let t240 = !(0x100u > t238) && !t239 && (t228 || !(1u > ((t224 >> 9u) & 1u)));
+    let t241 = t224 & 255u;
+    let t242 = t241 > 128u;
+    let t243 = !(128u > t241) && !t242 && (t228 || !(1u > ((t224 >> 8u) & 1u)));
+    let t244 = select(
+        (t224 & 0xffffff00u) + select(0u, 0x100u, t242 || t243),
+        (t224 & 0xfffffe00u) + select(0u, 0x200u, t239 || t240),
+        t229
+    );
+    let t245 = select(
+        select(t244, (t224 & 0xfffffc00u) + select(0u, 0x400u, t236 || t237), t230),
+        (t224 & 0xfffff800u) + select(0u, 0x800u, t233 || t234),
+        t231
+    );
+    let t246 = (t223 & 0xffffu) + (t245 >> 16u);
+    let t247 = t245 & 0xffffu;
+    let t248 = (t225 & 0xffffu) + (t246 >> 16u);
+    let t249 = t246 & 0xffffu;
+    let t250 = t227 + (t248 >> 16u);
+    let t251 = t248 & 0xffffu;
+    let t252 = (t221 >> 16u) + (t226 >> 16u) + (t250 >> 16u);
+    let t253 = t250 & 0xffffu;
+    let t254 = select(
+        ((t247 >> 8u) | (t249 << 8u)) & 0xffffu,
+        ((t247 >> 9u) | (t249 << 7u)) & 0xffffu,
+        t229
+    );
+    let t255 = select(
+        select(t254, ((t247 >> 10u) | (t249 << 6u)) & 0xffffu, t230),
+        ((t247 >> 11u) | (t249 << 5u)) & 0xffffu,
+        t231
+    );
+    let t256 = select(
+        ((t249 >> 8u) | (t251 << 8u)) & 0xffffu,
+        ((t249 >> 9u) | (t251 << 7u)) & 0xffffu,
+        t229
+    );
+    let t257 = select(
+        select(t256, ((t249 >> 10u) | (t251 << 6u)) & 0xffffu, t230),
+        ((t249 >> 11u) | (t251 << 5u)) & 0xffffu,
+        t231
+    );
+    let t258 = select(
+        ((t251 >> 8u) | (t253 << 8u)) & 0xffffu,
+        ((t251 >> 9u) | (t253 << 7u)) & 0xffffu,
+        t229
+    );
+    let t259 = select(
+        select(t258, ((t251 >> 10u) | (t253 << 6u)) & 0xffffu, t230),
+        ((t251 >> 11u) | (t253 << 5u)) & 0xffffu,
+        t231
+    );
+    let t260 = select((t253 >> 8u) | (t252 << 8u), (t253 >> 9u) | (t252 << 7u), t229);
+    let t261 = select(
+        select(t260, (t253 >> 10u) | (t252 << 6u), t230),
+        (t253 >> 11u) | (t252 << 5u),
+        t231
+    );
+    let t262 = t255 * 0x7fffu;
+    let t263 = t257 * 0x7fffu + (t262 >> 16u);
+    let t264 = t259 * 0x7fffu + (t263 >> 16u);
+    let t265 = t261 * 0x7fffu + (t264 >> 16u);
+    let t266 = t262 & 0xffffu;
+    let t267 = t265 >> 16u;
+    let t268 = t266 & 0x7fffu;
+    let t269 = t268 > 0x4000u;
+    let t270 = !(0x4000u > t268) && !t269 && !(1u > ((t266 >> 15u) & 1u));
+    let t271 = t266 & 0x3fffu;
+    let t272 = t271 > 0x2000u;
+    let t273 = !(0x2000u > t271) && !t272 && !(1u > ((t266 >> 14u) & 1u));
+    let t274 = select(
+        (t266 & 0xffffc000u) + select(0u, 0x4000u, t272 || t273),
+        (t266 & 0xffff8000u) + select(0u, 0x8000u, t269 || t270),
+        !(1u > (t267 >> 3u))
+    );
+    let t275 = (t263 & 0xffffu) + (t274 >> 16u);
+    let t276 = (t264 & 0xffffu) + (t275 >> 16u);
+    let t277 = (t265 & 0xffffu) + (t276 >> 16u);
+    let t278 = t276 & 0xffffu;
+    let t279 = (t278 >> 13u) + ((t277 & 0xffffu) << 3u) + ((t267 + (t277 >> 16u)) << 19u);
+    let t280 = !(1u > ((t278 & 0x1fffu) | (t275 & 0xffffu) | (t274 & 0xffffu)));
+    let t281 = (t209 >> 23u) + select(select(select(24u, 25u, t229), 26u, t230), 27u, t231) + 45u;
+    let t282 = !(81u > t281);
+    let draco_head = select(
+        0.0f,
+        f32(t279) * bitcast<f32>(select(1u, t281 - 80u, t282) << 23u),
+        t282
+    );
+    let t283 = 0.5f - draco_head;
+    let floor_t283 = floor(t283);
+    let i0 = select(
+        floor(draco_head + 0.5f),
+        floor_t283 - select(0.0f, 1.0f, t283 == floor_t283 && t280),
+        0.0f > v.x
+    );
+    let t284 = bitcast<u32>(draco_scaled.y);
+    let t285 = (t284 & 0x7fffffu) + 0x800000u;
+    let t286 = t285 & 0xffffu;
+    let t287 = draco_recip * t286;
+    let t288 = draco_recip2 * t286 + (t287 >> 16u);
+    let t289 = draco_recip4 * t286 + (t288 >> 16u);
+    let t290 = draco_recip3 * t286 + (t289 >> 16u);
+    let t291 = t287 & 0xffffu;
+    let t292 = t285 >> 16u;
+    let t293 = draco_recip * t292;
+    let t294 = draco_recip2 * t292 + (t293 >> 16u);
+    let t295 = draco_recip4 * t292 + (t294 >> 16u);
+    let t296 = draco_recip3 * t292 + (t295 >> 16u);
+    let t297 = (t288 & 0xffffu) + (t293 & 0xffffu) + (t291 >> 16u);
+    let t298 = (t289 & 0xffffu) + (t294 & 0xffffu) + (t297 >> 16u);
+    let t299 = t297 & 0xffffu;
+    let t300 = (t290 & 0xffffu) + (t295 & 0xffffu) + (t298 >> 16u);
+    let t301 = (t290 >> 16u) + (t296 & 0xffffu) + (t300 >> 16u);
+    let t302 = t301 & 0xffffu;
+    let t303 = !(1u > (t291 & 0xffffu));
+    let t304 = !(0x2000u > t302);
+    let t305 = !(0x4000u > t302);
+    let t306 = !(0x8000u > t302);
+    let t307 = t299 & 0x7ffu;
+    let t308 = t307 > 0x400u;
+    let t309 = !(0x400u > t307) && !t308 && (t303 || !(1u > ((t299 >> 11u) & 1u)));
+    let t310 = t299 & 0x3ffu;
+    let t311 = t310 > 0x200u;
+    let t312 = !(0x200u > t310) && !t311 && (t303 || !(1u > ((t299 >> 10u) & 1u)));
+    let t313 = t299 & 0x1ffu;
+    let t314 = t313 > 0x100u;
+    let t315 = !(0x100u > t313) && !t314 && (t303 || !(1u > ((t299 >> 9u) & 1u)));
+    let t316 = t299 & 255u;
+    let t317 = t316 > 128u;
+    let t318 = !(128u > t316) && !t317 && (t303 || !(1u > ((t299 >> 8u) & 1u)));
+    let t319 = select(
+        (t299 & 0xffffff00u) + select(0u, 0x100u, t317 || t318),
+        (t299 & 0xfffffe00u) + select(0u, 0x200u, t314 || t315),
+        t304
+    );
+    let t320 = select(
+        select(t319, (t299 & 0xfffffc00u) + select(0u, 0x400u, t311 || t312), t305),
+        (t299 & 0xfffff800u) + select(0u, 0x800u, t308 || t309),
+        t306
+    );
+    let t321 = (t298 & 0xffffu) + (t320 >> 16u);
+    let t322 = t320 & 0xffffu;
+    let t323 = (t300 & 0xffffu) + (t321 >> 16u);
+    let t324 = t321 & 0xffffu;
+    let t325 = t302 + (t323 >> 16u);
+    let t326 = t323 & 0xffffu;
+    let t327 = (t296 >> 16u) + (t301 >> 16u) + (t325 >> 16u);
+    let t328 = t325 & 0xffffu;
+    let t329 = select(
+        ((t322 >> 8u) | (t324 << 8u)) & 0xffffu,
+        ((t322 >> 9u) | (t324 << 7u)) & 0xffffu,
+        t304
+    );
+    let t330 = select(
+        select(t329, ((t322 >> 10u) | (t324 << 6u)) & 0xffffu, t305),
+        ((t322 >> 11u) | (t324 << 5u)) & 0xffffu,
+        t306
+    );
+    let t331 = select(
+        ((t324 >> 8u) | (t326 << 8u)) & 0xffffu,
+        ((t324 >> 9u) | (t326 << 7u)) & 0xffffu,
+        t304
+    );
+    let t332 = select(
+        select(t331, ((t324 >> 10u) | (t326 << 6u)) & 0xffffu, t305),
+        ((t324 >> 11u) | (t326 << 5u)) & 0xffffu,
+        t306
+    );
+    let t333 = select(
+        ((t326 >> 8u) | (t328 << 8u)) & 0xffffu,
+        ((t326 >> 9u) | (t328 << 7u)) & 0xffffu,
+        t304
+    );
+    let t334 = select(
+        select(t333, ((t326 >> 10u) | (t328 << 6u)) & 0xffffu, t305),
+        ((t326 >> 11u) | (t328 << 5u)) & 0xffffu,
+        t306
+    );
+    let t335 = select((t328 >> 8u) | (t327 << 8u), (t328 >> 9u) | (t327 << 7u), t304);
+    let t336 = select(
+        select(t335, (t328 >> 10u) | (t327 << 6u), t305),
+        (t328 >> 11u) | (t327 << 5u),
+        t306
+    );
+    let t337 = t330 * 0x7fffu;
+    let t338 = t332 * 0x7fffu + (t337 >> 16u);
+    let t339 = t334 * 0x7fffu + (t338 >> 16u);
+    let t340 = t336 * 0x7fffu + (t339 >> 16u);
+    let t341 = t337 & 0xffffu;
+    let t342 = t340 >> 16u;
+    let t343 = t341 & 0x7fffu;
+    let t344 = t343 > 0x4000u;
+    let t345 = !(0x4000u > t343) && !t344 && !(1u > ((t341 >> 15u) & 1u));
+    let t346 = t341 & 0x3fffu;
+    let t347 = t346 > 0x2000u;
+    let t348 = !(0x2000u > t346) && !t347 && !(1u > ((t341 >> 14u) & 1u));
+    let t349 = select(
+        (t341 & 0xffffc000u) + select(0u, 0x4000u, t347 || t348),
+        (t341 & 0xffff8000u) + select(0u, 0x8000u, t344 || t345),
+        !(1u > (t342 >> 3u))
+    );
+    let t350 = (t338 & 0xffffu) + (t349 >> 16u);
+    let t351 = (t339 & 0xffffu) + (t350 >> 16u);
+    let t352 = (t340 & 0xffffu) + (t351 >> 16u);
+    let t353 = t351 & 0xffffu;
+    let t354 = (t353 >> 13u) + ((t352 & 0xffffu) << 3u) + ((t342 + (t352 >> 16u)) << 19u);
+    let t355 = !(1u > ((t353 & 0x1fffu) | (t350 & 0xffffu) | (t349 & 0xffffu)));
+    let t356 = (t284 >> 23u) + select(select(select(24u, 25u, t304), 26u, t305), 27u, t306) + 45u;
+    let t357 = !(81u > t356);
+    let draco_head2 = select(
+        0.0f,
+        f32(t354) * bitcast<f32>(select(1u, t356 - 80u, t357) << 23u),
+        t357
+    );
+    let t358 = floor(draco_head2 + 0.5f);
+    let t359 = 0.5f - draco_head2;
+    let floor_t359 = floor(t359);
+    let t360 = floor_t359 - select(0.0f, 1.0f, t359 == floor_t359 && t355);
+    let i1 = select(t358, t360, 0.0f > v.y);
+    let t361 = !(27611u > draco_sum2) && !(draco_sum2 > 27611u) && draco_sum > 0x1a00u;
+    let t362 = !(61249u > draco_sum3) && !(draco_sum3 > 61249u) && (draco_sum2 > 27611u || t361);
+    let t363 = !(8589u > draco_sum4) && !(draco_sum4 > 8589u) && (draco_sum3 > 61249u || t362);
+    let t364 = !(107u > t39) && !(t39 > 107u) && (draco_sum4 > 8589u || t363);
+    let t365 = !(55222u > draco_sum2) && !(draco_sum2 > 55222u) && draco_sum > 0x3400u;
+    let t366 = !(56962u > draco_sum3) && !(draco_sum3 > 56962u) && (draco_sum2 > 55222u || t365);
+    let t367 = !(17179u > draco_sum4) && !(draco_sum4 > 17179u) && (draco_sum3 > 56962u || t366);
+    let t368 = !(106u > t39) && !(t39 > 106u) && (draco_sum4 > 17179u || t367);
+    let t369 = !(44908u > draco_sum2) && !(draco_sum2 > 44908u) && draco_sum > 0x6800u;
+    let t370 = !(48389u > draco_sum3) && !(draco_sum3 > 48389u) && (draco_sum2 > 44908u || t369);
+    let t371 = !(34359u > draco_sum4) && !(draco_sum4 > 34359u) && (draco_sum3 > 48389u || t370);
+    let t372 = !(105u > t39) && !(t39 > 105u) && (draco_sum4 > 34359u || t371);
+    let i2 = 32767.0f - abs(i0) - abs(i1);
+    let t373 = select(i1 - i2, i1 + i2, i1 > 0.0f);
+    let t374 = -select(i2, 0.0f, 0.0f > i2);
+    let t375 = select(
+        select(vec2<f32>(t358, i2), vec2<f32>(t360, 0.0f), vec2<f32>(0.0f) > vec2<f32>(v.y, i2)),
+        vec2<f32>(t373, t374),
+        vec2<f32>(0.0f) > vec2<f32>(i2, v.z)
+    );
+    let t376 = select(
+        select(vec2<f32>(i2, t358), vec2<f32>(0.0f, t360), vec2<f32>(0.0f) > vec2<f32>(i2, v.y)),
+        vec2<f32>(t374, t373),
+        vec2<f32>(0.0f) > vec2<f32>(v.z, i2)
+    );
     let st = select(
-        select(65534.0f - abs(t96), abs(t96), vec2<f32>(0.0f) > t94),
-        t94 + 32767.0f,
+        select(65534.0f - abs(t376), abs(t376), vec2<f32>(0.0f) > t375),
+        t375 + 32767.0f,
         i0 >= 0.0f
     );
-    let t97 = (st.x == 0.0f && (st.y == 0.0f || st.y == 65534.0f))
+    let t377 = (st.x == 0.0f && (st.y == 0.0f || st.y == 65534.0f))
         || (st.x == 65534.0f && st.y == 0.0f);
-    let t98 = (st.x == 0.0f && st.y > 32767.0f) || (st.x == 65534.0f && 32767.0f > st.y);
-    let t99 = (st.y == 65534.0f && 32767.0f > st.x) || (st.y == 0.0f && st.x > 32767.0f);
-    let t100 = (st.x == 0.0f && st.y > 32767.0f) || (st.x == 65534.0f && 32767.0f > st.y);
-    let t101 = bitcast<vec3<u32>>(v) & vec3<u32>(0x7fffffffu);
-    let t102 = !(0x7f800001u > t101.x) || !(0x7f800001u > t101.y) || !(0x7f800001u > t101.z);
-    let t103 = (!(0x7f800000u > t101.x) && !!(0x7f800001u > t101.x))
-        || (!(0x7f800000u > t101.y) && !!(0x7f800001u > t101.y));
-    let t104 = t103 || (!(0x7f800000u > t101.z) && !!(0x7f800001u > t101.z));
-    let t105 = select(
-        vec2<f32>(select(st.x, 65534.0f - st.x, t99), st.y),
+    let t378 = (st.x == 0.0f && st.y > 32767.0f) || (st.x == 65534.0f && 32767.0f > st.y);
+    let t379 = (st.y == 65534.0f && 32767.0f > st.x) || (st.y == 0.0f && st.x > 32767.0f);
+    let t380 = (st.x == 0.0f && st.y > 32767.0f) || (st.x == 65534.0f && 32767.0f > st.y);
+    let t381 = bitcast<vec3<u32>>(v) & vec3<u32>(0x7fffffffu);
+    let t382 = !(0x7f800001u > t381.x) || !(0x7f800001u > t381.y) || !(0x7f800001u > t381.z);
+    let t383 = (!(0x7f800000u > t381.x) && !!(0x7f800001u > t381.x))
+        || (!(0x7f800000u > t381.y) && !!(0x7f800001u > t381.y));
+    let t384 = t383 || (!(0x7f800000u > t381.z) && !!(0x7f800001u > t381.z));
+    let t385 = select(
+        vec2<f32>(select(st.x, 65534.0f - st.x, t379), st.y),
         vec2<f32>(st.x, 65534.0f - st.y),
-        vec2<bool>(t98, t100)
+        vec2<bool>(t378, t380)
     );
     let codes = select(
-        vec2<f32>(32767.0f, select(32767.0f, 65534.0f, t104 && !t102)),
-        select(t105, vec2<f32>(65534.0f), t97),
-        ok && abs_v.x + abs_v.y + abs_v.z >= 1.0000001e-6f
+        vec2<f32>(32767.0f, select(32767.0f, 65534.0f, t384 && !t382)),
+        select(t385, vec2<f32>(65534.0f), t377),
+        ok && (!(108u > t39) || t364 || t368 || t372)
     );
     return codes;
 }
@@ -260,7 +666,6 @@ fn unitpack_draco_oct16_encode_float(v: vec3<f32>) -> vec2<f32> {
 //   that need not be its direction's. The default, guarantee=portable, returns the same code on
 //   every implementation the include's header names.
 fn unitpack_draco_oct16_encode(v: vec3<f32>) -> u32 {
-    let abs_v = abs(v);
     let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
@@ -271,163 +676,570 @@ fn unitpack_draco_oct16_encode(v: vec3<f32>) -> u32 {
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
     let sum_below_16 = 16.0f > sum;
     let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), vec3<f32>(1.8189894e-12f) > abs(scaled));
-    let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
-    let magnitude = abs(w2);
-    let l1 = magnitude.x + magnitude.y + magnitude.z;
-    let fixed2 = magnitude.x * 4096.0f;
-    let floor_fixed2 = floor(fixed2);
-    let fixed_rest = (fixed2 - floor_fixed2) * 65536.0f;
-    let floor_fixed_rest = floor(fixed_rest);
-    let t1 = u32(floor((fixed_rest - floor_fixed_rest) * 65536.0f));
-    let floor_fixed_rest_u = u32(floor_fixed_rest);
-    let floor_fixed2_u = u32(floor_fixed2);
-    let fixed3 = magnitude.y * 4096.0f;
-    let floor_fixed3 = floor(fixed3);
-    let fixed_rest2 = (fixed3 - floor_fixed3) * 65536.0f;
-    let floor_fixed_rest2 = floor(fixed_rest2);
-    let t2 = u32(floor((fixed_rest2 - floor_fixed_rest2) * 65536.0f));
-    let floor_fixed_rest2_u = u32(floor_fixed_rest2);
-    let floor_fixed3_u = u32(floor_fixed3);
-    let fixed4 = magnitude.z * 4096.0f;
-    let floor_fixed4 = floor(fixed4);
-    let fixed_rest3 = (fixed4 - floor_fixed4) * 65536.0f;
-    let floor_fixed_rest3 = floor(fixed_rest3);
-    let t3 = t1 + t2 + u32(floor((fixed_rest3 - floor_fixed_rest3) * 65536.0f));
-    let t4 = floor_fixed_rest_u + floor_fixed_rest2_u + u32(floor_fixed_rest3) + (t3 >> 16u);
-    let t5 = floor_fixed2_u + floor_fixed3_u + u32(floor_fixed4) + (t4 >> 16u);
-    let t6 = t3 & 0xffffu;
-    let t7 = t4 & 0xffffu;
-    let t8 = round(magnitude.x / l1 * 32767.0f);
-    let estimate = select(32767.0f, t8, t8 <= 32767.0f);
-    let estimate_u = u32(estimate);
-    let t9 = t1 * 0xfffeu;
-    let t10 = floor_fixed_rest_u * 0xfffeu + (t9 >> 16u);
-    let t11 = floor_fixed2_u * 0xfffeu + (t10 >> 16u);
-    let t12 = t9 & 0xffffu;
-    let t13 = t10 & 0xffffu;
-    let t14 = t11 & 0xffffu;
-    let t15 = t11 >> 16u;
-    let t16 = estimate_u + estimate_u + 1u;
-    let t17 = t6 * t16;
-    let t18 = t7 * t16 + (t17 >> 16u);
-    let t19 = t5 * t16 + (t18 >> 16u);
-    let t20 = t17 & 0xffffu;
-    let t21 = t18 & 0xffffu;
-    let t22 = t19 & 0xffffu;
-    let t23 = t19 >> 16u;
-    let t24 = estimate_u + estimate_u - 1u;
-    let t25 = t6 * t24;
-    let t26 = t7 * t24 + (t25 >> 16u);
-    let t27 = t5 * t24 + (t26 >> 16u);
-    let t28 = t25 & 0xffffu;
-    let t29 = t26 & 0xffffu;
-    let t30 = t27 & 0xffffu;
-    let t31 = t27 >> 16u;
-    let t32 = 0.0f > w2.x;
-    let t33 = !(t21 > t13) && !(t13 > t21) && (t12 > t20 || !(t20 > t12));
-    let t34 = !(t22 > t14) && !(t14 > t22) && (t13 > t21 || t33);
-    let t35 = !(t23 > t15) && !(t15 > t23) && (t14 > t22 || t34);
-    let t36 = !(t21 > t13) && !(t13 > t21) && t12 > t20;
-    let t37 = !(t22 > t14) && !(t14 > t22) && (t13 > t21 || t36);
-    let t38 = !(t23 > t15) && !(t15 > t23) && (t14 > t22 || t37);
-    let t39 = ((t15 > t23 || t35) && !t32) || ((t15 > t23 || t38) && t32);
-    let t40 = !(t13 > t29) && !(t29 > t13) && t28 > t12;
-    let t41 = !(t14 > t30) && !(t30 > t14) && (t29 > t13 || t40);
-    let t42 = !(t15 > t31) && !(t31 > t15) && (t30 > t14 || t41);
-    let t43 = !(t13 > t29) && !(t29 > t13) && (t28 > t12 || !(t12 > t28));
-    let t44 = !(t14 > t30) && !(t30 > t14) && (t29 > t13 || t43);
-    let t45 = !(t15 > t31) && !(t31 > t15) && (t30 > t14 || t44);
-    let t46 = ((t31 > t15 || t42) && !t32) || ((t31 > t15 || t45) && t32);
-    let t47 = estimate + select(0.0f, 1.0f, t39) - select(0.0f, 1.0f, estimate > 0.0f && t46);
-    let i0 = select(t47, -t47, t32);
-    let t48 = round(magnitude.y / l1 * 32767.0f);
-    let estimate2 = select(32767.0f, t48, t48 <= 32767.0f);
-    let estimate2_u = u32(estimate2);
-    let t49 = t2 * 0xfffeu;
-    let t50 = floor_fixed_rest2_u * 0xfffeu + (t49 >> 16u);
-    let t51 = floor_fixed3_u * 0xfffeu + (t50 >> 16u);
-    let t52 = t49 & 0xffffu;
-    let t53 = t50 & 0xffffu;
-    let t54 = t51 & 0xffffu;
-    let t55 = t51 >> 16u;
-    let t56 = estimate2_u + estimate2_u + 1u;
-    let t57 = t6 * t56;
-    let t58 = t7 * t56 + (t57 >> 16u);
-    let t59 = t5 * t56 + (t58 >> 16u);
-    let t60 = t57 & 0xffffu;
-    let t61 = t58 & 0xffffu;
-    let t62 = t59 & 0xffffu;
-    let t63 = t59 >> 16u;
-    let t64 = estimate2_u + estimate2_u - 1u;
-    let t65 = t6 * t64;
-    let t66 = t7 * t64 + (t65 >> 16u);
-    let t67 = t5 * t64 + (t66 >> 16u);
-    let t68 = t65 & 0xffffu;
-    let t69 = t66 & 0xffffu;
-    let t70 = t67 & 0xffffu;
-    let t71 = t67 >> 16u;
-    let t72 = 0.0f > w2.y;
-    let t73 = !(t61 > t53) && !(t53 > t61) && (t52 > t60 || !(t60 > t52));
-    let t74 = !(t62 > t54) && !(t54 > t62) && (t53 > t61 || t73);
-    let t75 = !(t63 > t55) && !(t55 > t63) && (t54 > t62 || t74);
-    let t76 = !(t61 > t53) && !(t53 > t61) && t52 > t60;
-    let t77 = !(t62 > t54) && !(t54 > t62) && (t53 > t61 || t76);
-    let t78 = !(t63 > t55) && !(t55 > t63) && (t54 > t62 || t77);
-    let t79 = ((t55 > t63 || t75) && !t72) || ((t55 > t63 || t78) && t72);
-    let t80 = !(t53 > t69) && !(t69 > t53) && t68 > t52;
-    let t81 = !(t54 > t70) && !(t70 > t54) && (t69 > t53 || t80);
-    let t82 = !(t55 > t71) && !(t71 > t55) && (t70 > t54 || t81);
-    let t83 = !(t53 > t69) && !(t69 > t53) && (t68 > t52 || !(t52 > t68));
-    let t84 = !(t54 > t70) && !(t70 > t54) && (t69 > t53 || t83);
-    let t85 = !(t55 > t71) && !(t71 > t55) && (t70 > t54 || t84);
-    let t86 = ((t71 > t55 || t82) && !t72) || ((t71 > t55 || t85) && t72);
-    let t87 = estimate2 + select(0.0f, 1.0f, t79);
-    let t88 = select(0.0f, 1.0f, estimate2 > 0.0f && t86);
-    let t89 = t87 - t88;
-    let neg_t89 = -t89;
-    let i1 = select(t89, neg_t89, t72);
-    let t90 = 32767.0f - abs(i0);
-    let abs_i1 = abs(i1);
-    let i2 = t90 - abs_i1;
-    let t91 = select(i1 - i2, i1 + i2, i1 > 0.0f);
-    let t92 = -select(i2, 0.0f, 0.0f > i2);
-    let t93 = select(
-        vec2<f32>(t87, t90) - vec2<f32>(t88, abs_i1),
-        vec2<f32>(neg_t89, 0.0f),
-        vec2<f32>(0.0f) > vec2<f32>(w2.y, i2)
+    let t1 = abs(select(vec3<f32>(2.0f, 0.0f, 0.0f), scaled, ok));
+    let draco_scaled = select(t1, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(t1));
+    let draco_larger = select(draco_scaled.y, draco_scaled.x, draco_scaled.x >= draco_scaled.y);
+    let t2 = bitcast<u32>(draco_larger) >> 23u;
+    let t3 = select(t2, 67u, 67u > t2);
+    let t4 = round(
+        select(draco_scaled.y, draco_scaled.x, draco_scaled.x <= draco_scaled.y)
+            * bitcast<f32>((306u - t3) << 23u)
     );
-    let t94 = select(t93, vec2<f32>(t91, t92), vec2<f32>(0.0f) > vec2<f32>(i2, v.z));
-    let t95 = select(
-        vec2<f32>(t90, t87) - vec2<f32>(abs_i1, t88),
-        vec2<f32>(0.0f, neg_t89),
-        vec2<f32>(0.0f) > vec2<f32>(i2, w2.y)
+    let draco_smaller = t4 * bitcast<f32>((t3 - 52u) << 23u);
+    let t5 = draco_larger * 8192.0f;
+    let floor_t5 = floor(t5);
+    let t6 = (t5 - floor_t5) * 65536.0f;
+    let floor_t6 = floor(t6);
+    let t7 = (t6 - floor_t6) * 65536.0f;
+    let floor_t7 = floor(t7);
+    let t8 = (t7 - floor_t7) * 65536.0f;
+    let floor_t8 = floor(t8);
+    let t9 = draco_smaller * 8192.0f;
+    let floor_t9 = floor(t9);
+    let t10 = (t9 - floor_t9) * 65536.0f;
+    let floor_t10 = floor(t10);
+    let t11 = (t10 - floor_t10) * 65536.0f;
+    let floor_t11 = floor(t11);
+    let t12 = (t11 - floor_t11) * 65536.0f;
+    let floor_t12 = floor(t12);
+    let t13 = draco_scaled.z * 8192.0f;
+    let floor_t13 = floor(t13);
+    let t14 = (t13 - floor_t13) * 65536.0f;
+    let floor_t14 = floor(t14);
+    let t15 = (t14 - floor_t14) * 65536.0f;
+    let floor_t15 = floor(t15);
+    let t16 = (t15 - floor_t15) * 65536.0f;
+    let floor_t16 = floor(t16);
+    let t17 = t8 > floor_t8 || t12 > floor_t12 || t16 > floor_t16;
+    let t18 = u32(floor_t8) + u32(floor_t12) + u32(floor_t16);
+    let t19 = u32(floor_t7) + u32(floor_t11) + u32(floor_t15) + (t18 >> 16u);
+    let t20 = t18 & 0xffffu;
+    let t21 = u32(floor_t6) + u32(floor_t10) + u32(floor_t14) + (t19 >> 16u);
+    let t22 = u32(floor_t5) + u32(floor_t9) + u32(floor_t13) + (t21 >> 16u);
+    let t23 = t20 & 0xfffu;
+    let t24 = t23 > 0x800u;
+    let t25 = !(0x800u > t23) && !t24 && (t17 || !(1u > ((t20 >> 12u) & 1u)));
+    let t26 = t20 & 0x7ffu;
+    let t27 = t26 > 0x400u;
+    let t28 = !(0x400u > t26) && !t27 && (t17 || !(1u > ((t20 >> 11u) & 1u)));
+    let t29 = t20 & 0x3ffu;
+    let t30 = t29 > 0x200u;
+    let t31 = !(0x200u > t29) && !t30 && (t17 || !(1u > ((t20 >> 10u) & 1u)));
+    let t32 = select(
+        (t20 & 0xfffffc00u) + select(0u, 0x400u, t30 || t31),
+        (t20 & 0xfffff800u) + select(0u, 0x800u, t27 || t28),
+        !(0x8000u > t22)
     );
-    let t96 = select(t95, vec2<f32>(t92, t91), vec2<f32>(0.0f) > vec2<f32>(v.z, i2));
+    let t33 = select(t32, (t20 & 0xfffff000u) + select(0u, 0x1000u, t24 || t25), !(0x10000u > t22));
+    let t34 = (t19 & 0xffffu) + (t33 >> 16u);
+    let t35 = (t21 & 0xffffu) + (t34 >> 16u);
+    let t36 = t34 & 0xffffu;
+    let t37 = t22 + (t35 >> 16u);
+    let t38 = t35 & 0xffffu;
+    let draco_sum = ((t33 & 0xffffu) >> 1u) | ((t36 & 1u) << 15u);
+    let draco_sum2 = (t36 >> 1u) | ((t38 & 1u) << 15u);
+    let draco_sum3 = (t38 >> 1u) | ((t37 & 1u) << 15u);
+    let draco_sum4 = t37 >> 1u;
+    let t39 = 255u - (bitcast<u32>(scale) >> 23u);
+    let t40 = f32(draco_sum4) * 281474980000000.0f
+        + f32(draco_sum3) * 4294967300.0f
+        + f32(draco_sum2) * 65536.0f;
+    let draco_inverse = 1.0f / t40;
+    let t41 = floor(5.902958e20f * draco_inverse) - 1.0f;
+    let t42 = u32(select(0.0f, t41, t41 >= 0.0f));
+    let t43 = draco_sum * t42;
+    let t44 = draco_sum2 * t42 + (t43 >> 16u);
+    let t45 = draco_sum3 * t42 + (t44 >> 16u);
+    let t46 = draco_sum4 * t42 + (t45 >> 16u);
+    let t47 = 0x10000u - (t43 & 0xffffu) - 0u;
+    let t48 = t47 & 0xffffu;
+    let t49 = 0x10000u - (t44 & 0xffffu) - (1u - (t47 >> 16u));
+    let t50 = t49 & 0xffffu;
+    let t51 = 0x10000u - (t45 & 0xffffu) - (1u - (t49 >> 16u));
+    let t52 = t51 & 0xffffu;
+    let t53 = 0x10000u - (t46 & 0xffffu) - (1u - (t51 >> 16u));
+    let t54 = t53 & 0xffffu;
+    let t55 = (0x10020u - (t46 >> 16u) - (1u - (t53 >> 16u))) & 0xffffu;
+    let t56 = !(draco_sum2 > t50) && !(t50 > draco_sum2) && !(draco_sum > t48);
+    let t57 = !(draco_sum3 > t52) && !(t52 > draco_sum3) && (t50 > draco_sum2 || t56);
+    let t58 = !(draco_sum4 > t54) && !(t54 > draco_sum4) && (t52 > draco_sum3 || t57);
+    let t59 = !(1u > t55) || (t54 > draco_sum4 || t58);
+    let t60 = t48 + 0x10000u - draco_sum - 0u;
+    let t61 = t50 + 0x10000u - draco_sum2 - (1u - (t60 >> 16u));
+    let t62 = t52 + 0x10000u - draco_sum3 - (1u - (t61 >> 16u));
+    let t63 = t54 + 0x10000u - draco_sum4 - (1u - (t62 >> 16u));
+    let t64 = select(t48, t60 & 0xffffu, t59);
+    let t65 = select(t50, t61 & 0xffffu, t59);
+    let t66 = select(t52, t62 & 0xffffu, t59);
+    let t67 = select(t54, t63 & 0xffffu, t59);
+    let t68 = select(t55, (t55 + 0x10000u - 0u - (1u - (t63 >> 16u))) & 0xffffu, t59);
+    let t69 = !(draco_sum2 > t65) && !(t65 > draco_sum2) && !(draco_sum > t64);
+    let t70 = !(draco_sum3 > t66) && !(t66 > draco_sum3) && (t65 > draco_sum2 || t69);
+    let t71 = !(draco_sum4 > t67) && !(t67 > draco_sum4) && (t66 > draco_sum3 || t70);
+    let t72 = !(1u > t68) || (t67 > draco_sum4 || t71);
+    let t73 = t64 + 0x10000u - draco_sum - 0u;
+    let t74 = t65 + 0x10000u - draco_sum2 - (1u - (t73 >> 16u));
+    let t75 = t66 + 0x10000u - draco_sum3 - (1u - (t74 >> 16u));
+    let t76 = select(t65, t74 & 0xffffu, t72);
+    let t77 = select(t66, t75 & 0xffffu, t72);
+    let t78 = select(t67, (t67 + 0x10000u - draco_sum4 - (1u - (t75 >> 16u))) & 0xffffu, t72);
+    let draco_digit = t42 + select(0u, 1u, t59) + select(0u, 1u, t72);
+    let t79 = f32(t78) * 1.8446744e19f + f32(t77) * 281474980000000.0f + f32(t76) * 4294967300.0f;
+    let t80 = floor(t79 * draco_inverse) - 1.0f;
+    let t81 = u32(select(0.0f, t80, t80 >= 0.0f));
+    let t82 = draco_sum * t81;
+    let t83 = draco_sum2 * t81 + (t82 >> 16u);
+    let t84 = draco_sum3 * t81 + (t83 >> 16u);
+    let t85 = draco_sum4 * t81 + (t84 >> 16u);
+    let t86 = 0x10000u - (t82 & 0xffffu) - 0u;
+    let t87 = t86 & 0xffffu;
+    let t88 = select(t64, t73 & 0xffffu, t72) + 0x10000u - (t83 & 0xffffu) - (1u - (t86 >> 16u));
+    let t89 = t88 & 0xffffu;
+    let t90 = t76 + 0x10000u - (t84 & 0xffffu) - (1u - (t88 >> 16u));
+    let t91 = t90 & 0xffffu;
+    let t92 = t77 + 0x10000u - (t85 & 0xffffu) - (1u - (t90 >> 16u));
+    let t93 = t92 & 0xffffu;
+    let t94 = (t78 + 0x10000u - (t85 >> 16u) - (1u - (t92 >> 16u))) & 0xffffu;
+    let t95 = !(draco_sum2 > t89) && !(t89 > draco_sum2) && !(draco_sum > t87);
+    let t96 = !(draco_sum3 > t91) && !(t91 > draco_sum3) && (t89 > draco_sum2 || t95);
+    let t97 = !(draco_sum4 > t93) && !(t93 > draco_sum4) && (t91 > draco_sum3 || t96);
+    let t98 = !(1u > t94) || (t93 > draco_sum4 || t97);
+    let t99 = t87 + 0x10000u - draco_sum - 0u;
+    let t100 = t89 + 0x10000u - draco_sum2 - (1u - (t99 >> 16u));
+    let t101 = t91 + 0x10000u - draco_sum3 - (1u - (t100 >> 16u));
+    let t102 = t93 + 0x10000u - draco_sum4 - (1u - (t101 >> 16u));
+    let t103 = select(t87, t99 & 0xffffu, t98);
+    let t104 = select(t89, t100 & 0xffffu, t98);
+    let t105 = select(t91, t101 & 0xffffu, t98);
+    let t106 = select(t93, t102 & 0xffffu, t98);
+    let t107 = select(t94, (t94 + 0x10000u - 0u - (1u - (t102 >> 16u))) & 0xffffu, t98);
+    let t108 = !(draco_sum2 > t104) && !(t104 > draco_sum2) && !(draco_sum > t103);
+    let t109 = !(draco_sum3 > t105) && !(t105 > draco_sum3) && (t104 > draco_sum2 || t108);
+    let t110 = !(draco_sum4 > t106) && !(t106 > draco_sum4) && (t105 > draco_sum3 || t109);
+    let t111 = !(1u > t107) || (t106 > draco_sum4 || t110);
+    let t112 = t103 + 0x10000u - draco_sum - 0u;
+    let t113 = t104 + 0x10000u - draco_sum2 - (1u - (t112 >> 16u));
+    let t114 = t105 + 0x10000u - draco_sum3 - (1u - (t113 >> 16u));
+    let t115 = select(t104, t113 & 0xffffu, t111);
+    let t116 = select(t105, t114 & 0xffffu, t111);
+    let t117 = select(t106, (t106 + 0x10000u - draco_sum4 - (1u - (t114 >> 16u))) & 0xffffu, t111);
+    let draco_digit2 = t81 + select(0u, 1u, t98) + select(0u, 1u, t111);
+    let t118 = f32(t117) * 1.8446744e19f
+        + f32(t116) * 281474980000000.0f
+        + f32(t115) * 4294967300.0f;
+    let t119 = floor(t118 * draco_inverse) - 1.0f;
+    let t120 = u32(select(0.0f, t119, t119 >= 0.0f));
+    let t121 = draco_sum * t120;
+    let t122 = draco_sum2 * t120 + (t121 >> 16u);
+    let t123 = draco_sum3 * t120 + (t122 >> 16u);
+    let t124 = draco_sum4 * t120 + (t123 >> 16u);
+    let t125 = 0x10000u - (t121 & 0xffffu) - 0u;
+    let t126 = t125 & 0xffffu;
+    let t127 = select(t103, t112 & 0xffffu, t111)
+        + 0x10000u
+        - (t122 & 0xffffu)
+        - (1u - (t125 >> 16u));
+    let t128 = t127 & 0xffffu;
+    let t129 = t115 + 0x10000u - (t123 & 0xffffu) - (1u - (t127 >> 16u));
+    let t130 = t129 & 0xffffu;
+    let t131 = t116 + 0x10000u - (t124 & 0xffffu) - (1u - (t129 >> 16u));
+    let t132 = t131 & 0xffffu;
+    let t133 = (t117 + 0x10000u - (t124 >> 16u) - (1u - (t131 >> 16u))) & 0xffffu;
+    let t134 = !(draco_sum2 > t128) && !(t128 > draco_sum2) && !(draco_sum > t126);
+    let t135 = !(draco_sum3 > t130) && !(t130 > draco_sum3) && (t128 > draco_sum2 || t134);
+    let t136 = !(draco_sum4 > t132) && !(t132 > draco_sum4) && (t130 > draco_sum3 || t135);
+    let t137 = !(1u > t133) || (t132 > draco_sum4 || t136);
+    let t138 = t126 + 0x10000u - draco_sum - 0u;
+    let t139 = t128 + 0x10000u - draco_sum2 - (1u - (t138 >> 16u));
+    let t140 = t130 + 0x10000u - draco_sum3 - (1u - (t139 >> 16u));
+    let t141 = t132 + 0x10000u - draco_sum4 - (1u - (t140 >> 16u));
+    let t142 = select(t126, t138 & 0xffffu, t137);
+    let t143 = select(t128, t139 & 0xffffu, t137);
+    let t144 = select(t130, t140 & 0xffffu, t137);
+    let t145 = select(t132, t141 & 0xffffu, t137);
+    let t146 = select(t133, (t133 + 0x10000u - 0u - (1u - (t141 >> 16u))) & 0xffffu, t137);
+    let t147 = !(draco_sum2 > t143) && !(t143 > draco_sum2) && !(draco_sum > t142);
+    let t148 = !(draco_sum3 > t144) && !(t144 > draco_sum3) && (t143 > draco_sum2 || t147);
+    let t149 = !(draco_sum4 > t145) && !(t145 > draco_sum4) && (t144 > draco_sum3 || t148);
+    let t150 = !(1u > t146) || (t145 > draco_sum4 || t149);
+    let t151 = t142 + 0x10000u - draco_sum - 0u;
+    let t152 = t143 + 0x10000u - draco_sum2 - (1u - (t151 >> 16u));
+    let t153 = t144 + 0x10000u - draco_sum3 - (1u - (t152 >> 16u));
+    let t154 = select(t143, t152 & 0xffffu, t150);
+    let t155 = select(t144, t153 & 0xffffu, t150);
+    let t156 = select(t145, (t145 + 0x10000u - draco_sum4 - (1u - (t153 >> 16u))) & 0xffffu, t150);
+    let draco_digit3 = t120 + select(0u, 1u, t137) + select(0u, 1u, t150);
+    let t157 = f32(t156) * 1.8446744e19f
+        + f32(t155) * 281474980000000.0f
+        + f32(t154) * 4294967300.0f;
+    let t158 = floor(t157 * draco_inverse) - 1.0f;
+    let t159 = u32(select(0.0f, t158, t158 >= 0.0f));
+    let t160 = draco_sum * t159;
+    let t161 = draco_sum2 * t159 + (t160 >> 16u);
+    let t162 = draco_sum3 * t159 + (t161 >> 16u);
+    let t163 = draco_sum4 * t159 + (t162 >> 16u);
+    let t164 = 0x10000u - (t160 & 0xffffu) - 0u;
+    let t165 = t164 & 0xffffu;
+    let t166 = select(t142, t151 & 0xffffu, t150)
+        + 0x10000u
+        - (t161 & 0xffffu)
+        - (1u - (t164 >> 16u));
+    let t167 = t166 & 0xffffu;
+    let t168 = t154 + 0x10000u - (t162 & 0xffffu) - (1u - (t166 >> 16u));
+    let t169 = t168 & 0xffffu;
+    let t170 = t155 + 0x10000u - (t163 & 0xffffu) - (1u - (t168 >> 16u));
+    let t171 = t170 & 0xffffu;
+    let t172 = (t156 + 0x10000u - (t163 >> 16u) - (1u - (t170 >> 16u))) & 0xffffu;
+    let t173 = !(draco_sum2 > t167) && !(t167 > draco_sum2) && !(draco_sum > t165);
+    let t174 = !(draco_sum3 > t169) && !(t169 > draco_sum3) && (t167 > draco_sum2 || t173);
+    let t175 = !(draco_sum4 > t171) && !(t171 > draco_sum4) && (t169 > draco_sum3 || t174);
+    let t176 = !(1u > t172) || (t171 > draco_sum4 || t175);
+    let t177 = t165 + 0x10000u - draco_sum - 0u;
+    let t178 = t167 + 0x10000u - draco_sum2 - (1u - (t177 >> 16u));
+    let t179 = t169 + 0x10000u - draco_sum3 - (1u - (t178 >> 16u));
+    let t180 = t171 + 0x10000u - draco_sum4 - (1u - (t179 >> 16u));
+    let t181 = select(t165, t177 & 0xffffu, t176);
+    let t182 = select(t167, t178 & 0xffffu, t176);
+    let t183 = select(t169, t179 & 0xffffu, t176);
+    let t184 = select(t171, t180 & 0xffffu, t176);
+    let t185 = select(t172, (t172 + 0x10000u - 0u - (1u - (t180 >> 16u))) & 0xffffu, t176);
+    let t186 = !(draco_sum2 > t182) && !(t182 > draco_sum2) && !(draco_sum > t181);
+    let t187 = !(draco_sum3 > t183) && !(t183 > draco_sum3) && (t182 > draco_sum2 || t186);
+    let t188 = !(draco_sum4 > t184) && !(t184 > draco_sum4) && (t183 > draco_sum3 || t187);
+    let t189 = !(1u > t185) || (t184 > draco_sum4 || t188);
+    let t190 = t181 + 0x10000u - draco_sum - 0u;
+    let t191 = t182 + 0x10000u - draco_sum2 - (1u - (t190 >> 16u));
+    let t192 = t183 + 0x10000u - draco_sum3 - (1u - (t191 >> 16u));
+    let t193 = select(t184, (t184 + 0x10000u - draco_sum4 - (1u - (t192 >> 16u))) & 0xffffu, t189);
+    let draco_digit4 = t159 + select(0u, 1u, t176) + select(0u, 1u, t189);
+    let t194 = select(t181, t190 & 0xffffu, t189)
+        | select(t182, t191 & 0xffffu, t189)
+        | select(t183, t192 & 0xffffu, t189);
+    let t195 = !(1u > (t194 | t193));
+    let t196 = draco_digit4 & 7u;
+    let t197 = t196 > 4u;
+    let t198 = !(4u > t196) && !t197 && (t195 || !(1u > ((draco_digit4 >> 3u) & 1u)));
+    let t199 = draco_digit4 & 3u;
+    let t200 = t199 > 2u;
+    let t201 = !(2u > t199) && !t200 && (t195 || !(1u > ((draco_digit4 >> 2u) & 1u)));
+    let t202 = draco_digit4 & 1u;
+    let t203 = t202 > 1u;
+    let t204 = !(1u > t202) && !t203 && (t195 || !(1u > ((draco_digit4 >> 1u) & 1u)));
+    let t205 = select(
+        (draco_digit4 & 0xfffffffeu) + select(0u, 2u, t203 || t204),
+        (draco_digit4 & 0xfffffffcu) + select(0u, 4u, t200 || t201),
+        !(64u > draco_digit)
+    );
+    let t206 = select(
+        t205,
+        (draco_digit4 & 0xfffffff8u) + select(0u, 8u, t197 || t198),
+        !(128u > draco_digit)
+    );
+    let t207 = draco_digit3 + (t206 >> 16u);
+    let draco_recip = t206 & 0xffffu;
+    let t208 = draco_digit2 + (t207 >> 16u);
+    let draco_recip2 = t207 & 0xffffu;
+    let draco_recip3 = draco_digit + (t208 >> 16u);
+    let draco_recip4 = t208 & 0xffffu;
+    let t209 = bitcast<u32>(draco_scaled.x);
+    let t210 = (t209 & 0x7fffffu) + 0x800000u;
+    let t211 = t210 & 0xffffu;
+    let t212 = draco_recip * t211;
+    let t213 = draco_recip2 * t211 + (t212 >> 16u);
+    let t214 = draco_recip4 * t211 + (t213 >> 16u);
+    let t215 = draco_recip3 * t211 + (t214 >> 16u);
+    let t216 = t212 & 0xffffu;
+    let t217 = t210 >> 16u;
+    let t218 = draco_recip * t217;
+    let t219 = draco_recip2 * t217 + (t218 >> 16u);
+    let t220 = draco_recip4 * t217 + (t219 >> 16u);
+    let t221 = draco_recip3 * t217 + (t220 >> 16u);
+    let t222 = (t213 & 0xffffu) + (t218 & 0xffffu) + (t216 >> 16u);
+    let t223 = (t214 & 0xffffu) + (t219 & 0xffffu) + (t222 >> 16u);
+    let t224 = t222 & 0xffffu;
+    let t225 = (t215 & 0xffffu) + (t220 & 0xffffu) + (t223 >> 16u);
+    let t226 = (t215 >> 16u) + (t221 & 0xffffu) + (t225 >> 16u);
+    let t227 = t226 & 0xffffu;
+    let t228 = !(1u > (t216 & 0xffffu));
+    let t229 = !(0x2000u > t227);
+    let t230 = !(0x4000u > t227);
+    let t231 = !(0x8000u > t227);
+    let t232 = t224 & 0x7ffu;
+    let t233 = t232 > 0x400u;
+    let t234 = !(0x400u > t232) && !t233 && (t228 || !(1u > ((t224 >> 11u) & 1u)));
+    let t235 = t224 & 0x3ffu;
+    let t236 = t235 > 0x200u;
+    let t237 = !(0x200u > t235) && !t236 && (t228 || !(1u > ((t224 >> 10u) & 1u)));
+    let t238 = t224 & 0x1ffu;
+    let t239 = t238 > 0x100u;
+    let t240 = !(0x100u > t238) && !t239 && (t228 || !(1u > ((t224 >> 9u) & 1u)));
+    let t241 = t224 & 255u;
+    let t242 = t241 > 128u;
+    let t243 = !(128u > t241) && !t242 && (t228 || !(1u > ((t224 >> 8u) & 1u)));
+    let t244 = select(
+        (t224 & 0xffffff00u) + select(0u, 0x100u, t242 || t243),
+        (t224 & 0xfffffe00u) + select(0u, 0x200u, t239 || t240),
+        t229
+    );
+    let t245 = select(
+        select(t244, (t224 & 0xfffffc00u) + select(0u, 0x400u, t236 || t237), t230),
+        (t224 & 0xfffff800u) + select(0u, 0x800u, t233 || t234),
+        t231
+    );
+    let t246 = (t223 & 0xffffu) + (t245 >> 16u);
+    let t247 = t245 & 0xffffu;
+    let t248 = (t225 & 0xffffu) + (t246 >> 16u);
+    let t249 = t246 & 0xffffu;
+    let t250 = t227 + (t248 >> 16u);
+    let t251 = t248 & 0xffffu;
+    let t252 = (t221 >> 16u) + (t226 >> 16u) + (t250 >> 16u);
+    let t253 = t250 & 0xffffu;
+    let t254 = select(
+        ((t247 >> 8u) | (t249 << 8u)) & 0xffffu,
+        ((t247 >> 9u) | (t249 << 7u)) & 0xffffu,
+        t229
+    );
+    let t255 = select(
+        select(t254, ((t247 >> 10u) | (t249 << 6u)) & 0xffffu, t230),
+        ((t247 >> 11u) | (t249 << 5u)) & 0xffffu,
+        t231
+    );
+    let t256 = select(
+        ((t249 >> 8u) | (t251 << 8u)) & 0xffffu,
+        ((t249 >> 9u) | (t251 << 7u)) & 0xffffu,
+        t229
+    );
+    let t257 = select(
+        select(t256, ((t249 >> 10u) | (t251 << 6u)) & 0xffffu, t230),
+        ((t249 >> 11u) | (t251 << 5u)) & 0xffffu,
+        t231
+    );
+    let t258 = select(
+        ((t251 >> 8u) | (t253 << 8u)) & 0xffffu,
+        ((t251 >> 9u) | (t253 << 7u)) & 0xffffu,
+        t229
+    );
+    let t259 = select(
+        select(t258, ((t251 >> 10u) | (t253 << 6u)) & 0xffffu, t230),
+        ((t251 >> 11u) | (t253 << 5u)) & 0xffffu,
+        t231
+    );
+    let t260 = select((t253 >> 8u) | (t252 << 8u), (t253 >> 9u) | (t252 << 7u), t229);
+    let t261 = select(
+        select(t260, (t253 >> 10u) | (t252 << 6u), t230),
+        (t253 >> 11u) | (t252 << 5u),
+        t231
+    );
+    let t262 = t255 * 0x7fffu;
+    let t263 = t257 * 0x7fffu + (t262 >> 16u);
+    let t264 = t259 * 0x7fffu + (t263 >> 16u);
+    let t265 = t261 * 0x7fffu + (t264 >> 16u);
+    let t266 = t262 & 0xffffu;
+    let t267 = t265 >> 16u;
+    let t268 = t266 & 0x7fffu;
+    let t269 = t268 > 0x4000u;
+    let t270 = !(0x4000u > t268) && !t269 && !(1u > ((t266 >> 15u) & 1u));
+    let t271 = t266 & 0x3fffu;
+    let t272 = t271 > 0x2000u;
+    let t273 = !(0x2000u > t271) && !t272 && !(1u > ((t266 >> 14u) & 1u));
+    let t274 = select(
+        (t266 & 0xffffc000u) + select(0u, 0x4000u, t272 || t273),
+        (t266 & 0xffff8000u) + select(0u, 0x8000u, t269 || t270),
+        !(1u > (t267 >> 3u))
+    );
+    let t275 = (t263 & 0xffffu) + (t274 >> 16u);
+    let t276 = (t264 & 0xffffu) + (t275 >> 16u);
+    let t277 = (t265 & 0xffffu) + (t276 >> 16u);
+    let t278 = t276 & 0xffffu;
+    let t279 = (t278 >> 13u) + ((t277 & 0xffffu) << 3u) + ((t267 + (t277 >> 16u)) << 19u);
+    let t280 = !(1u > ((t278 & 0x1fffu) | (t275 & 0xffffu) | (t274 & 0xffffu)));
+    let t281 = (t209 >> 23u) + select(select(select(24u, 25u, t229), 26u, t230), 27u, t231) + 45u;
+    let t282 = !(81u > t281);
+    let draco_head = select(
+        0.0f,
+        f32(t279) * bitcast<f32>(select(1u, t281 - 80u, t282) << 23u),
+        t282
+    );
+    let t283 = 0.5f - draco_head;
+    let floor_t283 = floor(t283);
+    let i0 = select(
+        floor(draco_head + 0.5f),
+        floor_t283 - select(0.0f, 1.0f, t283 == floor_t283 && t280),
+        0.0f > v.x
+    );
+    let t284 = bitcast<u32>(draco_scaled.y);
+    let t285 = (t284 & 0x7fffffu) + 0x800000u;
+    let t286 = t285 & 0xffffu;
+    let t287 = draco_recip * t286;
+    let t288 = draco_recip2 * t286 + (t287 >> 16u);
+    let t289 = draco_recip4 * t286 + (t288 >> 16u);
+    let t290 = draco_recip3 * t286 + (t289 >> 16u);
+    let t291 = t287 & 0xffffu;
+    let t292 = t285 >> 16u;
+    let t293 = draco_recip * t292;
+    let t294 = draco_recip2 * t292 + (t293 >> 16u);
+    let t295 = draco_recip4 * t292 + (t294 >> 16u);
+    let t296 = draco_recip3 * t292 + (t295 >> 16u);
+    let t297 = (t288 & 0xffffu) + (t293 & 0xffffu) + (t291 >> 16u);
+    let t298 = (t289 & 0xffffu) + (t294 & 0xffffu) + (t297 >> 16u);
+    let t299 = t297 & 0xffffu;
+    let t300 = (t290 & 0xffffu) + (t295 & 0xffffu) + (t298 >> 16u);
+    let t301 = (t290 >> 16u) + (t296 & 0xffffu) + (t300 >> 16u);
+    let t302 = t301 & 0xffffu;
+    let t303 = !(1u > (t291 & 0xffffu));
+    let t304 = !(0x2000u > t302);
+    let t305 = !(0x4000u > t302);
+    let t306 = !(0x8000u > t302);
+    let t307 = t299 & 0x7ffu;
+    let t308 = t307 > 0x400u;
+    let t309 = !(0x400u > t307) && !t308 && (t303 || !(1u > ((t299 >> 11u) & 1u)));
+    let t310 = t299 & 0x3ffu;
+    let t311 = t310 > 0x200u;
+    let t312 = !(0x200u > t310) && !t311 && (t303 || !(1u > ((t299 >> 10u) & 1u)));
+    let t313 = t299 & 0x1ffu;
+    let t314 = t313 > 0x100u;
+    let t315 = !(0x100u > t313) && !t314 && (t303 || !(1u > ((t299 >> 9u) & 1u)));
+    let t316 = t299 & 255u;
+    let t317 = t316 > 128u;
+    let t318 = !(128u > t316) && !t317 && (t303 || !(1u > ((t299 >> 8u) & 1u)));
+    let t319 = select(
+        (t299 & 0xffffff00u) + select(0u, 0x100u, t317 || t318),
+        (t299 & 0xfffffe00u) + select(0u, 0x200u, t314 || t315),
+        t304
+    );
+    let t320 = select(
+        select(t319, (t299 & 0xfffffc00u) + select(0u, 0x400u, t311 || t312), t305),
+        (t299 & 0xfffff800u) + select(0u, 0x800u, t308 || t309),
+        t306
+    );
+    let t321 = (t298 & 0xffffu) + (t320 >> 16u);
+    let t322 = t320 & 0xffffu;
+    let t323 = (t300 & 0xffffu) + (t321 >> 16u);
+    let t324 = t321 & 0xffffu;
+    let t325 = t302 + (t323 >> 16u);
+    let t326 = t323 & 0xffffu;
+    let t327 = (t296 >> 16u) + (t301 >> 16u) + (t325 >> 16u);
+    let t328 = t325 & 0xffffu;
+    let t329 = select(
+        ((t322 >> 8u) | (t324 << 8u)) & 0xffffu,
+        ((t322 >> 9u) | (t324 << 7u)) & 0xffffu,
+        t304
+    );
+    let t330 = select(
+        select(t329, ((t322 >> 10u) | (t324 << 6u)) & 0xffffu, t305),
+        ((t322 >> 11u) | (t324 << 5u)) & 0xffffu,
+        t306
+    );
+    let t331 = select(
+        ((t324 >> 8u) | (t326 << 8u)) & 0xffffu,
+        ((t324 >> 9u) | (t326 << 7u)) & 0xffffu,
+        t304
+    );
+    let t332 = select(
+        select(t331, ((t324 >> 10u) | (t326 << 6u)) & 0xffffu, t305),
+        ((t324 >> 11u) | (t326 << 5u)) & 0xffffu,
+        t306
+    );
+    let t333 = select(
+        ((t326 >> 8u) | (t328 << 8u)) & 0xffffu,
+        ((t326 >> 9u) | (t328 << 7u)) & 0xffffu,
+        t304
+    );
+    let t334 = select(
+        select(t333, ((t326 >> 10u) | (t328 << 6u)) & 0xffffu, t305),
+        ((t326 >> 11u) | (t328 << 5u)) & 0xffffu,
+        t306
+    );
+    let t335 = select((t328 >> 8u) | (t327 << 8u), (t328 >> 9u) | (t327 << 7u), t304);
+    let t336 = select(
+        select(t335, (t328 >> 10u) | (t327 << 6u), t305),
+        (t328 >> 11u) | (t327 << 5u),
+        t306
+    );
+    let t337 = t330 * 0x7fffu;
+    let t338 = t332 * 0x7fffu + (t337 >> 16u);
+    let t339 = t334 * 0x7fffu + (t338 >> 16u);
+    let t340 = t336 * 0x7fffu + (t339 >> 16u);
+    let t341 = t337 & 0xffffu;
+    let t342 = t340 >> 16u;
+    let t343 = t341 & 0x7fffu;
+    let t344 = t343 > 0x4000u;
+    let t345 = !(0x4000u > t343) && !t344 && !(1u > ((t341 >> 15u) & 1u));
+    let t346 = t341 & 0x3fffu;
+    let t347 = t346 > 0x2000u;
+    let t348 = !(0x2000u > t346) && !t347 && !(1u > ((t341 >> 14u) & 1u));
+    let t349 = select(
+        (t341 & 0xffffc000u) + select(0u, 0x4000u, t347 || t348),
+        (t341 & 0xffff8000u) + select(0u, 0x8000u, t344 || t345),
+        !(1u > (t342 >> 3u))
+    );
+    let t350 = (t338 & 0xffffu) + (t349 >> 16u);
+    let t351 = (t339 & 0xffffu) + (t350 >> 16u);
+    let t352 = (t340 & 0xffffu) + (t351 >> 16u);
+    let t353 = t351 & 0xffffu;
+    let t354 = (t353 >> 13u) + ((t352 & 0xffffu) << 3u) + ((t342 + (t352 >> 16u)) << 19u);
+    let t355 = !(1u > ((t353 & 0x1fffu) | (t350 & 0xffffu) | (t349 & 0xffffu)));
+    let t356 = (t284 >> 23u) + select(select(select(24u, 25u, t304), 26u, t305), 27u, t306) + 45u;
+    let t357 = !(81u > t356);
+    let draco_head2 = select(
+        0.0f,
+        f32(t354) * bitcast<f32>(select(1u, t356 - 80u, t357) << 23u),
+        t357
+    );
+    let t358 = floor(draco_head2 + 0.5f);
+    let t359 = 0.5f - draco_head2;
+    let floor_t359 = floor(t359);
+    let t360 = floor_t359 - select(0.0f, 1.0f, t359 == floor_t359 && t355);
+    let i1 = select(t358, t360, 0.0f > v.y);
+    let t361 = !(27611u > draco_sum2) && !(draco_sum2 > 27611u) && draco_sum > 0x1a00u;
+    let t362 = !(61249u > draco_sum3) && !(draco_sum3 > 61249u) && (draco_sum2 > 27611u || t361);
+    let t363 = !(8589u > draco_sum4) && !(draco_sum4 > 8589u) && (draco_sum3 > 61249u || t362);
+    let t364 = !(107u > t39) && !(t39 > 107u) && (draco_sum4 > 8589u || t363);
+    let t365 = !(55222u > draco_sum2) && !(draco_sum2 > 55222u) && draco_sum > 0x3400u;
+    let t366 = !(56962u > draco_sum3) && !(draco_sum3 > 56962u) && (draco_sum2 > 55222u || t365);
+    let t367 = !(17179u > draco_sum4) && !(draco_sum4 > 17179u) && (draco_sum3 > 56962u || t366);
+    let t368 = !(106u > t39) && !(t39 > 106u) && (draco_sum4 > 17179u || t367);
+    let t369 = !(44908u > draco_sum2) && !(draco_sum2 > 44908u) && draco_sum > 0x6800u;
+    let t370 = !(48389u > draco_sum3) && !(draco_sum3 > 48389u) && (draco_sum2 > 44908u || t369);
+    let t371 = !(34359u > draco_sum4) && !(draco_sum4 > 34359u) && (draco_sum3 > 48389u || t370);
+    let t372 = !(105u > t39) && !(t39 > 105u) && (draco_sum4 > 34359u || t371);
+    let i2 = 32767.0f - abs(i0) - abs(i1);
+    let t373 = select(i1 - i2, i1 + i2, i1 > 0.0f);
+    let t374 = -select(i2, 0.0f, 0.0f > i2);
+    let t375 = select(
+        select(vec2<f32>(t358, i2), vec2<f32>(t360, 0.0f), vec2<f32>(0.0f) > vec2<f32>(v.y, i2)),
+        vec2<f32>(t373, t374),
+        vec2<f32>(0.0f) > vec2<f32>(i2, v.z)
+    );
+    let t376 = select(
+        select(vec2<f32>(i2, t358), vec2<f32>(0.0f, t360), vec2<f32>(0.0f) > vec2<f32>(i2, v.y)),
+        vec2<f32>(t374, t373),
+        vec2<f32>(0.0f) > vec2<f32>(v.z, i2)
+    );
     let st = select(
-        select(65534.0f - abs(t96), abs(t96), vec2<f32>(0.0f) > t94),
-        t94 + 32767.0f,
+        select(65534.0f - abs(t376), abs(t376), vec2<f32>(0.0f) > t375),
+        t375 + 32767.0f,
         i0 >= 0.0f
     );
-    let t97 = (st.x == 0.0f && (st.y == 0.0f || st.y == 65534.0f))
+    let t377 = (st.x == 0.0f && (st.y == 0.0f || st.y == 65534.0f))
         || (st.x == 65534.0f && st.y == 0.0f);
-    let t98 = (st.x == 0.0f && st.y > 32767.0f) || (st.x == 65534.0f && 32767.0f > st.y);
-    let t99 = (st.y == 65534.0f && 32767.0f > st.x) || (st.y == 0.0f && st.x > 32767.0f);
-    let t100 = (st.x == 0.0f && st.y > 32767.0f) || (st.x == 65534.0f && 32767.0f > st.y);
-    let t101 = bitcast<vec3<u32>>(v) & vec3<u32>(0x7fffffffu);
-    let t102 = !(0x7f800001u > t101.x) || !(0x7f800001u > t101.y) || !(0x7f800001u > t101.z);
-    let t103 = (!(0x7f800000u > t101.x) && !!(0x7f800001u > t101.x))
-        || (!(0x7f800000u > t101.y) && !!(0x7f800001u > t101.y));
-    let t104 = t103 || (!(0x7f800000u > t101.z) && !!(0x7f800001u > t101.z));
-    let t105 = select(
-        vec2<f32>(select(st.x, 65534.0f - st.x, t99), st.y),
+    let t378 = (st.x == 0.0f && st.y > 32767.0f) || (st.x == 65534.0f && 32767.0f > st.y);
+    let t379 = (st.y == 65534.0f && 32767.0f > st.x) || (st.y == 0.0f && st.x > 32767.0f);
+    let t380 = (st.x == 0.0f && st.y > 32767.0f) || (st.x == 65534.0f && 32767.0f > st.y);
+    let t381 = bitcast<vec3<u32>>(v) & vec3<u32>(0x7fffffffu);
+    let t382 = !(0x7f800001u > t381.x) || !(0x7f800001u > t381.y) || !(0x7f800001u > t381.z);
+    let t383 = (!(0x7f800000u > t381.x) && !!(0x7f800001u > t381.x))
+        || (!(0x7f800000u > t381.y) && !!(0x7f800001u > t381.y));
+    let t384 = t383 || (!(0x7f800000u > t381.z) && !!(0x7f800001u > t381.z));
+    let t385 = select(
+        vec2<f32>(select(st.x, 65534.0f - st.x, t379), st.y),
         vec2<f32>(st.x, 65534.0f - st.y),
-        vec2<bool>(t98, t100)
+        vec2<bool>(t378, t380)
     );
     let codes = select(
-        vec2<f32>(32767.0f, select(32767.0f, 65534.0f, t104 && !t102)),
-        select(t105, vec2<f32>(65534.0f), t97),
-        ok && abs_v.x + abs_v.y + abs_v.z >= 1.0000001e-6f
+        vec2<f32>(32767.0f, select(32767.0f, 65534.0f, t384 && !t382)),
+        select(t385, vec2<f32>(65534.0f), t377),
+        ok && (!(108u > t39) || t364 || t368 || t372)
     );
     return u32(codes.x) | (u32(codes.y) << 16u);
 }

@@ -121,7 +121,7 @@ registry! {
     }
     /// Engine formats: the bits an engine's or a format's own encoder stores, read as its
     /// decoder reads them, in the engine's arithmetic (the lean tier is their only one).
-    engine {
+    engine (draco_f64) {
         meshopt [MESHOPT_OCT8, MESHOPT_OCT16] => MeshoptOct;
         bevy [FAMILY] => BevyOct;
         unity [FAMILY] => UnityOct;

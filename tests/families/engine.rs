@@ -322,10 +322,8 @@ fn unity_nearest_rounding_lowers_the_error() {
     );
 }
 
-/// Draco's codes for every size, on the seeded and edge vectors (Draco's f64 arithmetic
-/// decides the same code wherever it is exact to `2^-45` of a boundary, so everywhere
-/// here), and its decoder on every code up to 16 bits (N ≤ 8) and a seeded quarter million
-/// above, bit for bit.
+/// Draco's codes for every size, on the seeded and edge vectors, and its decoder on every
+/// code up to 16 bits (N ≤ 8) and a seeded quarter million above, bit for bit.
 #[test]
 fn draco_matches_draco() {
     let vs = inputs();
@@ -360,14 +358,113 @@ fn draco_matches_draco() {
     }
 }
 
-/// Where draco_oct parts from Draco, as docs/codecs.md says: on an exact tie Draco's f64
-/// arithmetic decides (17/254·127 is 8.499999999999998 in f64, so Draco floors to 8) and
-/// unitpack returns the exact answer (9). If either side changes, the docs are stale.
+/// Draco's codes on the inputs where its f64 roundings decide: exact ties `x·c/a = j + ½`
+/// on integer vectors, those ties moved by a few ULP, by a component far below the others
+/// (at every exponent), and sums `a` brought to within a rounding of a 53-bit midpoint; and
+/// the three inputs the engine check found parting (Draco's codes as its own build wrote
+/// them).
 #[test]
-fn draco_oct_parts_from_draco_on_the_documented_tie() {
-    let v = [17.0f32, 0.0, 237.0];
-    let unitpack = run(&function("draco_oct8", Role::Encode), &bits(v))[0];
-    assert_eq!(unitpack, 0xf57f, "{unitpack:#x}");
-    let [s, t] = draco::encode(v, 8);
-    assert_eq!(s as u32 | (t as u32) << 8, 0xf67f, "Draco's ({s}, {t})");
+fn draco_oct_matches_draco_where_its_roundings_decide() {
+    let ulps = |x: f32, k: i32| {
+        if x == 0.0 {
+            x
+        } else {
+            f32::from_bits(x.to_bits().wrapping_add_signed(k))
+        }
+    };
+    let p2 = |e: i32| 2f32.powi(e.max(-126)) * 2f32.powi((e + 126).min(0));
+    let mut near: Vec<[f32; 3]> = Vec::new();
+    for x in -24..=24 {
+        for y in -24..=24 {
+            for z in [-37, -5, 0, 3, 41, 254] {
+                near.push([x as f32, y as f32, z as f32]);
+            }
+        }
+    }
+    for x in [1, 2, 3, 7, 17, 100, 175] {
+        for z in [-237, -79, 13, 99, 237, 253] {
+            for e in -149..-8 {
+                for t in [1.0, 3.0, -5.0] {
+                    let tiny = t * p2(e);
+                    near.extend([
+                        [x as f32, tiny, z as f32],
+                        [tiny, x as f32, z as f32],
+                        [x as f32, z as f32, tiny],
+                    ]);
+                }
+            }
+        }
+    }
+    let mut r = 0x2545_f491_4f6c_dd1du64;
+    let mut next = move || {
+        r ^= r << 13;
+        r ^= r >> 7;
+        r ^= r << 17;
+        r
+    };
+    for _ in 0..100_000 {
+        // |z| in [1, 2), another component with its bits near 2^-53 of it, one far below.
+        let z = 1.0 + (next() % (1 << 23)) as f32 * p2(-23);
+        let x = (1.0 + (next() % 8) as f32 / 8.0) * p2(-20 - (next() % 40) as i32);
+        let y = (1.0 + (next() % 8) as f32 / 8.0) * p2(-20 - (next() % 110) as i32);
+        let mut v = [x, y, z];
+        v.swap((next() % 3) as usize, 2);
+        v[0] = if next() % 2 == 0 { v[0] } else { -v[0] };
+        near.push(v);
+    }
+    for n in [8u32, 10, 12, 14, 16] {
+        let c = (1i64 << (n - 1)) - 1;
+        let enc = function(&format!("draco_oct{n}"), Role::Encode);
+        let mut ties = near.clone();
+        for x in 1..12 {
+            for y in 0..6 {
+                let z = (2 * c * x - x - y) as f32;
+                for (sx, sz) in [(1.0, 1.0), (-1.0, 1.0), (1.0, -1.0)] {
+                    let base = [sx * x as f32, y as f32, sz * z];
+                    for k in [-2, -1, 0, 1, 2] {
+                        ties.extend([
+                            [ulps(base[0], k), base[1], base[2]],
+                            [base[0], ulps(base[1], k), base[2]],
+                            [base[0], base[1], ulps(base[2], k)],
+                        ]);
+                    }
+                }
+            }
+        }
+        for v in &ties {
+            let [s, t] = draco::encode(*v, n);
+            let got = run(&enc, &bits(*v))[0];
+            let want = s as u32 | (t as u32) << n;
+            assert_eq!(got, want, "draco_oct{n}: {v:?}: {got:#x}, Draco {want:#x}");
+        }
+    }
+    let enc = function("draco_oct8", Role::Encode);
+    for (v, want) in [
+        // 2^-34 = 5.820766091346741e-11 and 2^-43 = 1.1368683772161603e-13.
+        ([175.0, 2f32.powi(-34), -79.0], 0x577f),
+        ([1.0, 2f32.powi(-43), 1.0], 0xbf7f),
+        ([17.0, 0.0, 237.0], 0xf67f),
+    ] {
+        let [s, t] = draco::encode(v, 8);
+        assert_eq!(s as u32 | (t as u32) << 8, want, "the port, {v:?}");
+        assert_eq!(run(&enc, &bits(v))[0], want, "{v:?}");
+    }
+}
+
+/// The one double `q` below ½ whose `q + ½` rounds up to 1, `½ - 2^-54`, is `c·p` rounded
+/// for no double `p` at any of draco_oct's sizes (`c = 2^(N-1) - 1`), so the encoder's
+/// `floor(q + ½)` never meets it (src/codecs/engine/draco_f64.rs): only a `p` within a
+/// few ULP of `1/(2c)` could give a product that near ½, and none does.
+#[test]
+fn draco_oct_never_rounds_a_product_to_the_one_q_whose_half_rounds_up() {
+    let q = 0.5 - 2f64.powi(-54);
+    assert_eq!(q + 0.5, 1.0, "the double that rounds up");
+    for n in 8..=16 {
+        let c = ((1u64 << (n - 1)) - 1) as f64;
+        let p = 1.0 / (2.0 * c);
+        for k in -64i64..=64 {
+            let p = f64::from_bits(p.to_bits().wrapping_add_signed(k));
+            assert_ne!(p * c, q, "N = {n}: p = {p:e}");
+        }
+    }
 }

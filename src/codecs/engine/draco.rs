@@ -10,18 +10,12 @@
 //! Draco encodes in f64: `i = floor(v/|v|₁·c + ½)` for x and y, z from the remainder
 //! `c - |i₀| - |i₁|` (folded into y where negative), then the integer map to `(s, t)` and
 //! the canonical form of the border. An f32 chain would differ from it near every code
-//! boundary, so the codes are decided in integers instead: the canonical input
-//! ([`canonical_or_z`]: scaled by a power of two, components below `2^-39` of the largest
-//! dropped) is floored to a fixed-point grid of `2^-44` (three 16-bit limbs per
-//! component), and each code is the integer `i` with `(2i - 1)·L ≤ 2c·A < (2i + 1)·L`
-//! (`A` the component's magnitude, `L` the sum of the three, ties away from zero for x ≥ 0
-//! and toward it below, as `floor(· + ½)` takes them), compared exactly in 16-bit limbs:
-//! no rounding of a float decides a digit. That is Draco's code wherever its f64
-//! arithmetic is exact to `2^-45` of a code boundary: every input but those within about
-//! `2^-30` of a tie, where Draco's own roundings decide. Input whose L1 norm is at most
-//! `1e-6` (Draco's threshold, compared here in f32) and NaN input encode as +X, `(c, c)`,
-//! as in Draco; infinite input as +Z, `(c, 2c)`, what Draco's f64 arithmetic gives where
-//! its cast is defined.
+//! boundary, and exact arithmetic on the ties and near-ties where Draco's own roundings
+//! decide, so x's and y's codes follow Draco's f64 operations one rounding at a time, in
+//! 32-bit integers ([`draco_codes`]): Draco's codes for every finite input (a denormal
+//! component reads as zero). Input whose L1 norm is at most `1e-6` (Draco's threshold,
+//! decided on its f64 sum) and NaN input encode as +X, `(c, c)`, as in Draco; infinite
+//! input as +Z, `(c, 2c)`, what Draco's f64 arithmetic gives where its cast is defined.
 //!
 //! The decoder is Draco's f32 arithmetic: `s·(2/(2^N - 2)) - 1`, the fold, and
 //! `v·(1/sqrt(v·v))`, or the zero vector where `v·v < 1e-6` (never for a code Draco
@@ -34,7 +28,7 @@ use crate::codecs::core::ieee;
 use crate::codecs::core::info::{Info, Sizes, FloatForm, seam};
 use crate::codecs::core::pipeline::codec_functions;
 use crate::codecs::core::spec::SpecError;
-use crate::codecs::toolkit::exact::canonical_or_z;
+use crate::codecs::engine::draco_f64::draco_codes;
 use crate::codecs::toolkit::quant::{Quant, Quants};
 use crate::model::num::helper;
 use crate::model::{Bool, Float, Uint, V2, V3};
@@ -112,54 +106,6 @@ impl DracoOct {
 /// an f32 `x`, and `x > 1e-6` is `x ≥ NORM_SQUARED_FLOOR`.
 const NORM_SQUARED_FLOOR: f32 = 1.000_000_1e-6;
 
-/// A canonical component's magnitude `|a| < 4` floored to the grid `2^-44`, as three
-/// 16-bit limbs (the top one below `2^14`), lowest first: power-of-two products, floors
-/// and differences, each exact.
-#[inline(always)]
-fn limbs<F: Float>(a: F) -> [F::U; 3] {
-    let top = (a * F::c(4096.0)).named("fixed");
-    let l2 = top.floor();
-    let rest = ((top - l2) * F::c(65536.0)).named("fixed_rest");
-    let l1 = rest.floor();
-    let l0 = ((rest - l1) * F::c(65536.0)).floor();
-    [l0.to_u(), l1.to_u(), l2.to_u()]
-}
-
-/// `a·m` for 16-bit limbs and `m < 2^16`: every partial product and carry fits 32 bits.
-#[inline(always)]
-fn times<F: Float>(a: [F::U; 3], m: F::U) -> [F::U; 4] {
-    let mask = F::U::c(0xffff);
-    let p0 = a[0].wrapping_mul(m);
-    let p1 = a[1].wrapping_mul(m) + p0.shr(16);
-    let p2 = a[2].wrapping_mul(m) + p1.shr(16);
-    [p0 & mask, p1 & mask, p2 & mask, p2.shr(16)]
-}
-
-/// The sum of three limb numbers, carried (the top limb stays below `2^16`).
-#[inline(always)]
-fn sum<F: Float>(v: [[F::U; 3]; 3]) -> [F::U; 3] {
-    let mask = F::U::c(0xffff);
-    let s0 = v[0][0] + v[1][0] + v[2][0];
-    let s1 = v[0][1] + v[1][1] + v[2][1] + s0.shr(16);
-    let s2 = v[0][2] + v[1][2] + v[2][2] + s1.shr(16);
-    [s0 & mask, s1 & mask, s2]
-}
-
-/// `a > b` (or `a ≥ b` with `or_equal`) of two limb numbers, from the top limb down.
-#[inline(always)]
-fn exceeds<F: Float>(a: [F::U; 4], b: [F::U; 4], or_equal: bool) -> F::B {
-    let mut r = if or_equal {
-        b[0].lt(a[0]).or(a[0].lt(b[0]).not())
-    } else {
-        b[0].lt(a[0])
-    };
-    for i in 1..4 {
-        let equal = a[i].lt(b[i]).not().and(b[i].lt(a[i]).not());
-        r = b[i].lt(a[i]).or(equal.and(r));
-    }
-    r
-}
-
 impl Codec for DracoOct {
     type P<F: Float> = V2<F>;
     type C<F: Float> = F::U;
@@ -193,46 +139,14 @@ impl Codec for DracoOct {
     fn decode_codes<F: Float>(&self, st: V2<F>) -> V3<F> {
         self.unit_vector(st)
     }
-    /// `FloatVectorToQuantizedOctahedralCoords`, its f64 roundings replaced by exact
-    /// integer decisions.
+    /// `FloatVectorToQuantizedOctahedralCoords`, its f64 roundings reproduced exactly
+    /// ([`draco_codes`]).
     #[inline(always)]
     fn round_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
         let zero = F::c(0.0);
         let (c, mv) = (self.center(), self.max_value());
         let cf = F::c(c);
-        let a = v.abs();
-        let raw_l1 = a.x + a.y + a.z;
-        let (w, ok) = canonical_or_z(v);
-        let ok = ok.and(raw_l1.ge(F::c(NORM_SQUARED_FLOOR)));
-        let m = w.abs().named("magnitude");
-        let l1 = (m.x + m.y + m.z).named("l1");
-        let fixed = [limbs(m.x), limbs(m.y), limbs(m.z)];
-        let total = sum::<F>(fixed);
-        // The code of x or y: the integer i with (2i - 1)·L ≤ 2c·A < (2i + 1)·L for a
-        // non-negative component (ties up), strictly below and at most above for a
-        // negative one (ties toward zero), from an estimate within one of it.
-        let code = {
-            #[inline(always)]
-            |k: usize, x: F| {
-                let estimate = (m.to_array()[k] / l1 * cf).round().at_most(cf).named("estimate");
-                let e = estimate.to_u();
-                let lhs = times::<F>(fixed[k], F::U::c(2 * c as u32));
-                let above = times::<F>(total, e + e + F::U::c(1));
-                let below = times::<F>(total, (e + e).wrapping_sub(F::U::c(1)));
-                let negative = x.lt(zero);
-                let up = exceeds::<F>(lhs, above, true).and(negative.not())
-                    .or(exceeds::<F>(lhs, above, false).and(negative));
-                let down = estimate.gt(zero).and(
-                    exceeds::<F>(below, lhs, false).and(negative.not())
-                        .or(exceeds::<F>(below, lhs, true).and(negative)),
-                );
-                let one = F::c(1.0);
-                let mag = estimate + F::sel(up, one, zero) - F::sel(down, one, zero);
-                F::sel(negative, -mag, mag)
-            }
-        };
-        let i0 = code(0, w.x).named("i0");
-        let i1 = code(1, w.y).named("i1");
+        let (i0, i1, ok) = draco_codes(v, c as u32);
         let i2 = (cf - i0.abs() - i1.abs()).named("i2");
         let folded = i2.lt(zero);
         let i1 = F::sel(folded, F::sel(i1.gt(zero), i1 + i2, i1 - i2), i1).named("i1");

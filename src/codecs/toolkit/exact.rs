@@ -47,15 +47,27 @@ const EXPONENT: u32 = 0x7f80_0000;
 /// NaN or outside `[2, 12)`.
 #[inline(always)]
 pub fn canonical<F: Float>(v: V3<F>) -> (V3<F>, F::B) {
-    // `x < least` is false for NaN, so NaN survives to spoil the sum below.
-    let keep = {
-        #[inline(always)]
-        |x: F, least: f32| F::sel(x.abs().lt(F::c(least)), F::c(0.0), x)
-    };
+    let (w, _, ok) = scaled(v);
+    (
+        w.map(
+            #[inline(always)]
+            |x| normal_or_zero(x, NEGLIGIBLE),
+        )
+        .named("w"),
+        ok,
+    )
+}
+
+/// [`canonical`] before its negligible components are set to zero: the input with
+/// denormal components `+0`, scaled by the power of two `2^(128 - E)` that puts its largest
+/// component in `[2, 4)`; that scale; and whether the input has a direction. A scaled
+/// component may be denormal (below `2^-126` of a largest one in `[2, 4)`).
+#[inline(always)]
+pub fn scaled<F: Float>(v: V3<F>) -> (V3<F>, F, F::B) {
     let v = v
         .map(
             #[inline(always)]
-            |x| keep(x, MIN_NORMAL),
+            |x| normal_or_zero(x, MIN_NORMAL),
         )
         .named("normal");
     let a = v.abs();
@@ -74,14 +86,14 @@ pub fn canonical<F: Float>(v: V3<F>) -> (V3<F>, F::B) {
         .ge(F::c(2.0))
         .and(sum.lt(F::c(16.0)).named("sum_below_16"))
         .named("ok");
-    (
-        w.map(
-            #[inline(always)]
-            |x| keep(x, NEGLIGIBLE),
-        )
-        .named("w"),
-        ok,
-    )
+    (w, scale, ok)
+}
+
+/// `x`, or `+0` where `|x|` is below `least` (NaN is kept: `x < least` is false for it, so
+/// a NaN survives to spoil the sums that decide validity).
+#[inline(always)]
+pub fn normal_or_zero<F: Float>(x: F, least: f32) -> F {
+    F::sel(x.abs().lt(F::c(least)), F::c(0.0), x)
 }
 
 /// [`canonical`], with invalid input replaced by `(0, 0, 2)` (canonical +Z), so that the
