@@ -121,9 +121,10 @@ static inline void unitpack_draco_oct8_decode(uint32_t code, float out[3]) {
     out[2] = r.z;
 }
 
-// The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
-//   comparing correctly rounded products, never a quotient or a root, so division and square root
-//   error, contraction, denormal flushing and lost signs of zero cannot change them.
+// Draco's integer codes (as floats): its f64 arithmetic repeated one rounding at a time in 32-bit
+//   integers and exact float steps, a quotient only estimating a digit that integers then correct,
+//   so division error and contraction cannot change them. A denormal component counts as zero, but
+//   for the sign of z.
 
 static inline unitpack_vec2 unitpack_draco_oct8_round_codes_v(unitpack_vec3 v) {
     const unitpack_vec3 normal = {
@@ -150,7 +151,7 @@ static inline unitpack_vec2 unitpack_draco_oct8_round_codes_v(unitpack_vec3 v) {
         fabsf(t1.z) < 1.1754944e-38f ? 0.0f : t1.z
     };
     const float draco_larger = draco_scaled.x >= draco_scaled.y ? draco_scaled.x : draco_scaled.y;
-    const uint32_t t2 = unitpack_bits_of(draco_larger) >> 23u;
+    const uint32_t t2 = (unitpack_bits_of(draco_larger) & 0x7fffffffu) >> 23u;
     const uint32_t t3 = t2 < 67u ? 67u : t2;
     const float t4 = nearbyintf(
         (draco_scaled.x <= draco_scaled.y ? draco_scaled.x : draco_scaled.y)
@@ -428,7 +429,7 @@ static inline unitpack_vec2 unitpack_draco_oct8_round_codes_v(unitpack_vec3 v) {
     const uint32_t draco_recip2 = t215 & 0xffffu;
     const uint32_t draco_recip3 = draco_digit + (t216 >> 16u);
     const uint32_t draco_recip4 = t216 & 0xffffu;
-    const uint32_t t217 = unitpack_bits_of(draco_scaled.x);
+    const uint32_t t217 = unitpack_bits_of(draco_scaled.x) & 0x7fffffffu;
     const uint32_t t218 = (t217 & 0x7fffffu) + 0x800000u;
     const uint32_t t219 = t218 & 0xffffu;
     const uint32_t t220 = draco_recip * t219;
@@ -533,7 +534,7 @@ static inline unitpack_vec2 unitpack_draco_oct8_round_codes_v(unitpack_vec3 v) {
     const float i0 = v.x < 0.0f
         ? floor_t292 - (t292 == floor_t292 && t289 ? 1.0f : 0.0f)
         : floorf(draco_head + 0.5f);
-    const uint32_t t293 = unitpack_bits_of(draco_scaled.y);
+    const uint32_t t293 = unitpack_bits_of(draco_scaled.y) & 0x7fffffffu;
     const uint32_t t294 = (t293 & 0x7fffffu) + 0x800000u;
     const uint32_t t295 = t294 & 0xffffu;
     const uint32_t t296 = draco_recip * t295;
@@ -753,7 +754,7 @@ static inline uint32_t unitpack_draco_oct8_encode_v(unitpack_vec3 v) {
         fabsf(t1.z) < 1.1754944e-38f ? 0.0f : t1.z
     };
     const float draco_larger = draco_scaled.x >= draco_scaled.y ? draco_scaled.x : draco_scaled.y;
-    const uint32_t t2 = unitpack_bits_of(draco_larger) >> 23u;
+    const uint32_t t2 = (unitpack_bits_of(draco_larger) & 0x7fffffffu) >> 23u;
     const uint32_t t3 = t2 < 67u ? 67u : t2;
     const float t4 = nearbyintf(
         (draco_scaled.x <= draco_scaled.y ? draco_scaled.x : draco_scaled.y)
@@ -1031,7 +1032,7 @@ static inline uint32_t unitpack_draco_oct8_encode_v(unitpack_vec3 v) {
     const uint32_t draco_recip2 = t215 & 0xffffu;
     const uint32_t draco_recip3 = draco_digit + (t216 >> 16u);
     const uint32_t draco_recip4 = t216 & 0xffffu;
-    const uint32_t t217 = unitpack_bits_of(draco_scaled.x);
+    const uint32_t t217 = unitpack_bits_of(draco_scaled.x) & 0x7fffffffu;
     const uint32_t t218 = (t217 & 0x7fffffu) + 0x800000u;
     const uint32_t t219 = t218 & 0xffffu;
     const uint32_t t220 = draco_recip * t219;
@@ -1136,7 +1137,7 @@ static inline uint32_t unitpack_draco_oct8_encode_v(unitpack_vec3 v) {
     const float i0 = v.x < 0.0f
         ? floor_t292 - (t292 == floor_t292 && t289 ? 1.0f : 0.0f)
         : floorf(draco_head + 0.5f);
-    const uint32_t t293 = unitpack_bits_of(draco_scaled.y);
+    const uint32_t t293 = unitpack_bits_of(draco_scaled.y) & 0x7fffffffu;
     const uint32_t t294 = (t293 & 0x7fffffu) + 0x800000u;
     const uint32_t t295 = t294 & 0xffffu;
     const uint32_t t296 = draco_recip * t295;

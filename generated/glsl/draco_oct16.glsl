@@ -79,9 +79,10 @@ vec3 unitpack_draco_oct16_decode(uint code) {
     return norm_squared < 1.0000001e-6 ? vec3(0.0) : t3;
 }
 
-// The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
-//   comparing correctly rounded products, never a quotient or a root, so division and square root
-//   error, contraction, denormal flushing and lost signs of zero cannot change them.
+// Draco's integer codes (as floats): its f64 arithmetic repeated one rounding at a time in 32-bit
+//   integers and exact float steps, a quotient only estimating a digit that integers then correct,
+//   so division error and contraction cannot change them. A denormal component counts as zero, but
+//   for the sign of z.
 vec2 unitpack_draco_oct16_round_codes(vec3 v) {
     UNITPACK_PRECISE vec3 normal = mix(v, vec3(0.0), lessThan(abs(v), vec3(1.1754944e-38)));
     UNITPACK_PRECISE vec3 abs_normal = abs(normal);
@@ -100,7 +101,7 @@ vec2 unitpack_draco_oct16_round_codes(vec3 v) {
     UNITPACK_PRECISE float draco_larger = draco_scaled.x >= draco_scaled.y
         ? draco_scaled.x
         : draco_scaled.y;
-    uint t2 = floatBitsToUint(draco_larger) >> 23u;
+    uint t2 = (floatBitsToUint(draco_larger) & 0x7fffffffu) >> 23u;
     uint t3 = t2 < 67u ? 67u : t2;
     UNITPACK_PRECISE float t4 = roundEven(
         (draco_scaled.x <= draco_scaled.y ? draco_scaled.x : draco_scaled.y)
@@ -460,7 +461,7 @@ vec2 unitpack_draco_oct16_round_codes(vec3 v) {
     uint draco_recip2 = t320 & 0xffffu;
     uint draco_recip3 = draco_digit + (t321 >> 16u);
     uint draco_recip4 = t321 & 0xffffu;
-    uint t322 = floatBitsToUint(draco_scaled.x);
+    uint t322 = floatBitsToUint(draco_scaled.x) & 0x7fffffffu;
     uint t323 = (t322 & 0x7fffffu) + 0x800000u;
     uint t324 = t323 & 0xffffu;
     uint t325 = draco_recip * t324;
@@ -583,7 +584,7 @@ vec2 unitpack_draco_oct16_round_codes(vec3 v) {
     UNITPACK_PRECISE float floor_t440 = floor(t440);
     UNITPACK_PRECISE float t441 = floor_t440 - (t440 == floor_t440 && t434 ? 1.0 : 0.0);
     UNITPACK_PRECISE float i0 = v.x < 0.0 ? t441 : t439;
-    uint t442 = floatBitsToUint(draco_scaled.y);
+    uint t442 = floatBitsToUint(draco_scaled.y) & 0x7fffffffu;
     uint t443 = (t442 & 0x7fffffu) + 0x800000u;
     uint t444 = t443 & 0xffffu;
     uint t445 = draco_recip * t444;
@@ -840,7 +841,7 @@ uint unitpack_draco_oct16_encode(vec3 v) {
     UNITPACK_PRECISE float draco_larger = draco_scaled.x >= draco_scaled.y
         ? draco_scaled.x
         : draco_scaled.y;
-    uint t2 = floatBitsToUint(draco_larger) >> 23u;
+    uint t2 = (floatBitsToUint(draco_larger) & 0x7fffffffu) >> 23u;
     uint t3 = t2 < 67u ? 67u : t2;
     UNITPACK_PRECISE float t4 = roundEven(
         (draco_scaled.x <= draco_scaled.y ? draco_scaled.x : draco_scaled.y)
@@ -1200,7 +1201,7 @@ uint unitpack_draco_oct16_encode(vec3 v) {
     uint draco_recip2 = t320 & 0xffffu;
     uint draco_recip3 = draco_digit + (t321 >> 16u);
     uint draco_recip4 = t321 & 0xffffu;
-    uint t322 = floatBitsToUint(draco_scaled.x);
+    uint t322 = floatBitsToUint(draco_scaled.x) & 0x7fffffffu;
     uint t323 = (t322 & 0x7fffffu) + 0x800000u;
     uint t324 = t323 & 0xffffu;
     uint t325 = draco_recip * t324;
@@ -1323,7 +1324,7 @@ uint unitpack_draco_oct16_encode(vec3 v) {
     UNITPACK_PRECISE float floor_t440 = floor(t440);
     UNITPACK_PRECISE float t441 = floor_t440 - (t440 == floor_t440 && t434 ? 1.0 : 0.0);
     UNITPACK_PRECISE float i0 = v.x < 0.0 ? t441 : t439;
-    uint t442 = floatBitsToUint(draco_scaled.y);
+    uint t442 = floatBitsToUint(draco_scaled.y) & 0x7fffffffu;
     uint t443 = (t442 & 0x7fffffu) + 0x800000u;
     uint t444 = t443 & 0xffffu;
     uint t445 = draco_recip * t444;

@@ -89,9 +89,10 @@ float3 unitpack_draco_oct8_decode(uint code) {
     return norm_squared < 1.0000001e-6 ? float3(0.0, 0.0, 0.0) : t3;
 }
 
-// The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
-//   comparing correctly rounded products, never a quotient or a root, so division and square root
-//   error, contraction, denormal flushing and lost signs of zero cannot change them.
+// Draco's integer codes (as floats): its f64 arithmetic repeated one rounding at a time in 32-bit
+//   integers and exact float steps, a quotient only estimating a digit that integers then correct,
+//   so division error and contraction cannot change them. A denormal component counts as zero, but
+//   for the sign of z.
 float2 unitpack_draco_oct8_round_codes(float3 v) {
     precise float3 normal = UNITPACK_SELECT(
         abs(v) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
@@ -114,7 +115,7 @@ float2 unitpack_draco_oct8_round_codes(float3 v) {
         t1
     );
     precise float draco_larger = draco_scaled.x >= draco_scaled.y ? draco_scaled.x : draco_scaled.y;
-    uint t2 = asuint(draco_larger) >> 23u;
+    uint t2 = (asuint(draco_larger) & 0x7fffffffu) >> 23u;
     uint t3 = t2 < 67u ? 67u : t2;
     precise float t4 = round(
         (draco_scaled.x <= draco_scaled.y ? draco_scaled.x : draco_scaled.y)
@@ -474,7 +475,7 @@ float2 unitpack_draco_oct8_round_codes(float3 v) {
     uint draco_recip2 = t320 & 0xffffu;
     uint draco_recip3 = draco_digit + (t321 >> 16u);
     uint draco_recip4 = t321 & 0xffffu;
-    uint t322 = asuint(draco_scaled.x);
+    uint t322 = asuint(draco_scaled.x) & 0x7fffffffu;
     uint t323 = (t322 & 0x7fffffu) + 0x800000u;
     uint t324 = t323 & 0xffffu;
     uint t325 = draco_recip * t324;
@@ -599,7 +600,7 @@ float2 unitpack_draco_oct8_round_codes(float3 v) {
     precise float floor_t442 = floor(t442);
     precise float t443 = floor_t442 - (t442 == floor_t442 && t436 ? 1.0 : 0.0);
     precise float i0 = v.x < 0.0 ? t443 : t441;
-    uint t444 = asuint(draco_scaled.y);
+    uint t444 = asuint(draco_scaled.y) & 0x7fffffffu;
     uint t445 = (t444 & 0x7fffffu) + 0x800000u;
     uint t446 = t445 & 0xffffu;
     uint t447 = draco_recip * t446;
@@ -862,7 +863,7 @@ uint unitpack_draco_oct8_encode(float3 v) {
         t1
     );
     precise float draco_larger = draco_scaled.x >= draco_scaled.y ? draco_scaled.x : draco_scaled.y;
-    uint t2 = asuint(draco_larger) >> 23u;
+    uint t2 = (asuint(draco_larger) & 0x7fffffffu) >> 23u;
     uint t3 = t2 < 67u ? 67u : t2;
     precise float t4 = round(
         (draco_scaled.x <= draco_scaled.y ? draco_scaled.x : draco_scaled.y)
@@ -1222,7 +1223,7 @@ uint unitpack_draco_oct8_encode(float3 v) {
     uint draco_recip2 = t320 & 0xffffu;
     uint draco_recip3 = draco_digit + (t321 >> 16u);
     uint draco_recip4 = t321 & 0xffffu;
-    uint t322 = asuint(draco_scaled.x);
+    uint t322 = asuint(draco_scaled.x) & 0x7fffffffu;
     uint t323 = (t322 & 0x7fffffu) + 0x800000u;
     uint t324 = t323 & 0xffffu;
     uint t325 = draco_recip * t324;
@@ -1347,7 +1348,7 @@ uint unitpack_draco_oct8_encode(float3 v) {
     precise float floor_t442 = floor(t442);
     precise float t443 = floor_t442 - (t442 == floor_t442 && t436 ? 1.0 : 0.0);
     precise float i0 = v.x < 0.0 ? t443 : t441;
-    uint t444 = asuint(draco_scaled.y);
+    uint t444 = asuint(draco_scaled.y) & 0x7fffffffu;
     uint t445 = (t444 & 0x7fffffu) + 0x800000u;
     uint t446 = t445 & 0xffffu;
     uint t447 = draco_recip * t446;

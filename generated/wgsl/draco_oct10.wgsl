@@ -61,9 +61,10 @@ fn unitpack_draco_oct10_decode(code: u32) -> vec3<f32> {
     return select(v * (1.0f / sqrt(norm_squared)), vec3<f32>(0.0f), 1.0000001e-6f > norm_squared);
 }
 
-// The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
-//   comparing correctly rounded products, never a quotient or a root, so division and square root
-//   error, contraction, denormal flushing and lost signs of zero cannot change them.
+// Draco's integer codes (as floats): its f64 arithmetic repeated one rounding at a time in 32-bit
+//   integers and exact float steps, a quotient only estimating a digit that integers then correct,
+//   so division error and contraction cannot change them. A denormal component counts as zero, but
+//   for the sign of z.
 fn unitpack_draco_oct10_round_codes(v: vec3<f32>) -> vec2<f32> {
     let normal = select(v, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(v));
     let abs_normal = abs(normal);
@@ -78,7 +79,7 @@ fn unitpack_draco_oct10_round_codes(v: vec3<f32>) -> vec2<f32> {
     let t1 = abs(select(vec3<f32>(2.0f, 0.0f, 0.0f), scaled, ok));
     let draco_scaled = select(t1, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(t1));
     let draco_larger = select(draco_scaled.y, draco_scaled.x, draco_scaled.x >= draco_scaled.y);
-    let t2 = bitcast<u32>(draco_larger) >> 23u;
+    let t2 = (bitcast<u32>(draco_larger) & 0x7fffffffu) >> 23u;
     let t3 = select(t2, 67u, 67u > t2);
     let t4 = round(
         select(draco_scaled.y, draco_scaled.x, draco_scaled.x <= draco_scaled.y)
@@ -340,7 +341,7 @@ fn unitpack_draco_oct10_round_codes(v: vec3<f32>) -> vec2<f32> {
     let draco_recip2 = t207 & 0xffffu;
     let draco_recip3 = draco_digit + (t208 >> 16u);
     let draco_recip4 = t208 & 0xffffu;
-    let t209 = bitcast<u32>(draco_scaled.x);
+    let t209 = bitcast<u32>(draco_scaled.x) & 0x7fffffffu;
     let t210 = (t209 & 0x7fffffu) + 0x800000u;
     let t211 = t210 & 0xffffu;
     let t212 = draco_recip * t211;
@@ -467,7 +468,7 @@ fn unitpack_draco_oct10_round_codes(v: vec3<f32>) -> vec2<f32> {
         floor_t284 - select(0.0f, 1.0f, t284 == floor_t284 && t281),
         0.0f > v.x
     );
-    let t285 = bitcast<u32>(draco_scaled.y);
+    let t285 = bitcast<u32>(draco_scaled.y) & 0x7fffffffu;
     let t286 = (t285 & 0x7fffffu) + 0x800000u;
     let t287 = t286 & 0xffffu;
     let t288 = draco_recip * t287;
@@ -681,7 +682,7 @@ fn unitpack_draco_oct10_encode(v: vec3<f32>) -> u32 {
     let t1 = abs(select(vec3<f32>(2.0f, 0.0f, 0.0f), scaled, ok));
     let draco_scaled = select(t1, vec3<f32>(0.0f), vec3<f32>(1.1754944e-38f) > abs(t1));
     let draco_larger = select(draco_scaled.y, draco_scaled.x, draco_scaled.x >= draco_scaled.y);
-    let t2 = bitcast<u32>(draco_larger) >> 23u;
+    let t2 = (bitcast<u32>(draco_larger) & 0x7fffffffu) >> 23u;
     let t3 = select(t2, 67u, 67u > t2);
     let t4 = round(
         select(draco_scaled.y, draco_scaled.x, draco_scaled.x <= draco_scaled.y)
@@ -943,7 +944,7 @@ fn unitpack_draco_oct10_encode(v: vec3<f32>) -> u32 {
     let draco_recip2 = t207 & 0xffffu;
     let draco_recip3 = draco_digit + (t208 >> 16u);
     let draco_recip4 = t208 & 0xffffu;
-    let t209 = bitcast<u32>(draco_scaled.x);
+    let t209 = bitcast<u32>(draco_scaled.x) & 0x7fffffffu;
     let t210 = (t209 & 0x7fffffu) + 0x800000u;
     let t211 = t210 & 0xffffu;
     let t212 = draco_recip * t211;
@@ -1070,7 +1071,7 @@ fn unitpack_draco_oct10_encode(v: vec3<f32>) -> u32 {
         floor_t284 - select(0.0f, 1.0f, t284 == floor_t284 && t281),
         0.0f > v.x
     );
-    let t285 = bitcast<u32>(draco_scaled.y);
+    let t285 = bitcast<u32>(draco_scaled.y) & 0x7fffffffu;
     let t286 = (t285 & 0x7fffffu) + 0x800000u;
     let t287 = t286 & 0xffffu;
     let t288 = draco_recip * t287;

@@ -359,10 +359,11 @@ fn draco_matches_draco() {
 }
 
 /// Draco's codes on the inputs where its f64 roundings decide: exact ties `x·c/a = j + ½`
-/// on integer vectors, those ties moved by a few ULP, by a component far below the others
-/// (at every exponent), and sums `a` brought to within a rounding of a 53-bit midpoint; and
-/// the three inputs the engine check found parting (Draco's codes as its own build wrote
-/// them).
+/// on integer vectors; those ties moved by a few ULP of a component, and by a component far
+/// below the others at every exponent, with one, two and all 24 significant bits (so that
+/// the sum's rounding, its sticky bit and the first sum's rounding to the larger term's
+/// ULP each decide some of them), at every size; and the three inputs the engine check
+/// found parting (Draco's codes as its own build wrote them).
 #[test]
 fn draco_oct_matches_draco_where_its_roundings_decide() {
     let ulps = |x: f32, k: i32| {
@@ -373,6 +374,15 @@ fn draco_oct_matches_draco_where_its_roundings_decide() {
         }
     };
     let p2 = |e: i32| 2f32.powi(e.max(-126)) * 2f32.powi((e + 126).min(0));
+    // Significands of the far smaller component: one bit, two, and all 24.
+    let tinies = [
+        1.0,
+        -3.0,
+        1.0 + f32::EPSILON,
+        -(2.0 - f32::EPSILON),
+        1.333_333_4,
+    ];
+    let far = |e: i32| tinies.map(|t| t * p2(e));
     let mut near: Vec<[f32; 3]> = Vec::new();
     for x in -24..=24 {
         for y in -24..=24 {
@@ -381,11 +391,20 @@ fn draco_oct_matches_draco_where_its_roundings_decide() {
             }
         }
     }
+    // Two equal magnitudes and a far smaller third: the sum's last place then rests on the
+    // third's top bit, and its sticky bit on the third's lowest.
+    for x in 1..=8 {
+        for e in -70..-30 {
+            for tiny in far(e) {
+                let x = x as f32;
+                near.extend([[x, x, tiny], [x, -x, tiny], [tiny, x, x]]);
+            }
+        }
+    }
     for x in [1, 2, 3, 7, 17, 100, 175] {
         for z in [-237, -79, 13, 99, 237, 253] {
             for e in -149..-8 {
-                for t in [1.0, 3.0, -5.0] {
-                    let tiny = t * p2(e);
+                for tiny in far(e) {
                     near.extend([
                         [x as f32, tiny, z as f32],
                         [tiny, x as f32, z as f32],
@@ -395,27 +414,19 @@ fn draco_oct_matches_draco_where_its_roundings_decide() {
             }
         }
     }
-    let mut r = 0x2545_f491_4f6c_dd1du64;
-    let mut next = move || {
-        r ^= r << 13;
-        r ^= r >> 7;
-        r ^= r << 17;
-        r
-    };
-    for _ in 0..100_000 {
-        // |z| in [1, 2), another component with its bits near 2^-53 of it, one far below.
-        let z = 1.0 + (next() % (1 << 23)) as f32 * p2(-23);
-        let x = (1.0 + (next() % 8) as f32 / 8.0) * p2(-20 - (next() % 40) as i32);
-        let y = (1.0 + (next() % 8) as f32 / 8.0) * p2(-20 - (next() % 110) as i32);
-        let mut v = [x, y, z];
-        v.swap((next() % 3) as usize, 2);
-        v[0] = if next() % 2 == 0 { v[0] } else { -v[0] };
-        near.push(v);
-    }
     for n in [8u32, 10, 12, 14, 16] {
         let c = (1i64 << (n - 1)) - 1;
         let enc = function(&format!("draco_oct{n}"), Role::Encode);
         let mut ties = near.clone();
+        // x·c/a = ½ at this size, moved by a far smaller component.
+        for x in 1..4 {
+            let z = (2 * c * x - x) as f32;
+            for e in -149..-10 {
+                for tiny in far(e) {
+                    ties.extend([[x as f32, tiny, z], [tiny, x as f32, -z]]);
+                }
+            }
+        }
         for x in 1..12 {
             for y in 0..6 {
                 let z = (2 * c * x - x - y) as f32;
@@ -467,4 +478,43 @@ fn draco_oct_never_rounds_a_product_to_the_one_q_whose_half_rounds_up() {
             assert_ne!(p * c, q, "N = {n}: p = {p:e}");
         }
     }
+}
+
+/// Draco's `a > 1e-6` on sums at the threshold and one f64 step either side of it: 1e-6
+/// split into three f32 parts (the largest f32 below it, the largest below the rest, the
+/// remainder, each exact), the last moved by a step of `2^-72`, 1e-6's last place, so the
+/// f64 sum is exactly at, below or above it. At or below, the code is +X's; above, the
+/// direction's.
+#[test]
+fn draco_oct_takes_draco_s_threshold_as_draco_does() {
+    let ulps = |x: f32, k: i32| f32::from_bits(x.to_bits().wrapping_add_signed(k));
+    let below = |x: f64| {
+        let f = x as f32;
+        if f64::from(f) > x { ulps(f, -1) } else { f }
+    };
+    let d = 1e-6f64;
+    let step = 2f64.powi(-72);
+    let mut cases = [0usize; 3];
+    let enc = function("draco_oct10", Role::Encode);
+    for kx in 0..40 {
+        let x = ulps(below(d), -kx);
+        let rest = d - f64::from(x);
+        let y = if rest == 0.0 { 0.0 } else { below(rest) };
+        let last = rest - f64::from(y);
+        for kz in -2..=2 {
+            let z = (last + f64::from(kz) * step) as f32;
+            assert_eq!(f64::from(z), last + f64::from(kz) * step, "an exact part");
+            let sum = (f64::from(x) + f64::from(y)) + f64::from(z).abs();
+            cases[(sum.partial_cmp(&d).unwrap() as i32 + 1) as usize] += 1;
+            for v in [[x, y, z], [-y, z.abs(), -x], [z, -x, y]] {
+                let [s, t] = draco::encode(v, 10);
+                let got = run(&enc, &bits(v))[0];
+                assert_eq!(got, s as u32 | (t as u32) << 10, "{v:?}: sum {sum:e}");
+            }
+        }
+    }
+    assert!(
+        cases.iter().all(|&n| n > 0),
+        "sums below, at and above 1e-6: {cases:?}"
+    );
 }

@@ -51,7 +51,12 @@ pub static FAMILY: CodecFamily<DracoOct> = CodecFamily::new(
     |bits| DracoOct { n: bits / 2 },
     codec_functions,
 )
-.with_engine("Draco");
+.with_engine("Draco")
+.with_helper_doc(|name| (name == "round_codes").then(|| ROUND_CODES_DOC.to_string()));
+
+/// What the emitted `round_codes` helper is: not the shared helper's comparison of
+/// rounded products, but Draco's f64 steps.
+const ROUND_CODES_DOC: &str = "Draco's integer codes (as floats): its f64 arithmetic repeated one rounding at a time in 32-bit integers and exact float steps, a quotient only estimating a digit that integers then correct, so division error and contraction cannot change them. A denormal component counts as zero, but for the sign of z.";
 
 impl DracoOct {
     /// The codec with `n` quantization bits.

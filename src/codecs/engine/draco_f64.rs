@@ -16,16 +16,20 @@
 //! 2. `|x| + |y|`, larger `L` plus smaller `S`: exact in 53 bits unless `S` has bits below
 //!    `u = ulp₅₃(L)`, and then (no carry is possible) it is `L + S'`, `S'` the multiple of
 //!    `u` nearest `S` (ties to even): `round(S/u)·u`, exact in f32.
-//! 3. `a`: `L + S' + |z|` summed exactly in limbs on the grid `2^-61` with a sticky bit,
-//!    rounded to 53 bits (it lies in `[2, 12)`, so 10 to 12 bits go).
+//! 3. `a`: `L + S' + |z|` in limbs on the grid `2^-61` with a sticky bit for bits below
+//!    it, rounded to 53 bits (it lies in `[2, 12)`, so 10 to 12 bits go). Exact but for
+//!    a carry out of two terms' sub-grid bits, which needs both x and y below `2^-37` of
+//!    z: their codes are then 0 whatever `a`'s last bit, and `a` is far from Draco's
+//!    threshold (the low 29 bits of `1e-6`'s significand are far from zero).
 //! 4. `s = 1/a`: `floor(2^117/A)` (`A = a·2^60`) by long division in 16-bit digits, each
-//!    estimated in f32 and corrected by exact remainders, then rounded to 53 bits.
+//!    estimated in f32 (within a few hundredths, even with a quotient 2.5 ULP off) and
+//!    corrected by exact remainders, then rounded to 53 bits.
 //! 5. `v·s` and then `·c`: exact limb products, each rounded to 53 bits.
-//! 6. `floor(q + ½)`: `q` keeps 53 bits, so `q + ½` is exact for `|q| ≥ ½` and `q < 0`;
-//!    below `½` it could round up to 1 only at `q = ½ - 2^-54`, which is `RN(p·c)` for no
-//!    double `p` at Draco's `c = 2^(N-1) - 1` (N = 8 to 16; see the test). With `q` at
-//!    least `2^21` of its own units, the floor is decided by its top 23 bits, and for a
-//!    negative `q` also by whether any bit below them is set.
+//! 6. `floor(RN(q + ½))`: the rounding of `q + ½` moves no floor, `floor(RN(q + ½)) =
+//!    floor(q + ½)`, for every double `q` but `½ - 2^-54` (whose `q + ½` rounds up to 1),
+//!    and that is `RN(p·c)` for no double `p` at Draco's `c = 2^(N-1) - 1` (N = 8 to 16;
+//!    see the test). With `q` at least `2^21` of its own units, the floor is decided by its
+//!    top 23 bits, and for a negative `q` also by whether any bit below them is set.
 //!
 //! Denormal input components read as zero (an implementation may flush them), where
 //! Draco's C++ keeps them: the one place the codes can part, and only in `i2`'s sign.
@@ -56,7 +60,10 @@ pub fn draco_codes<F: Float>(v: V3<F>, c: u32) -> (F, F, F::B) {
     // |x| + |y| rounded to 53 bits: the larger plus the smaller rounded to its ulp.
     let l = w.x.at_least(w.y).named("draco_larger");
     let s = w.x.at_most(w.y);
-    let el = l.to_bits().shr(23);
+    // The exponent field, at least 67: `L < 2^-60` only where z is the largest, and then
+    // `L + S < 2^-59` is below half of `a`'s last place either way. (Magnitude bits: an
+    // implementation may give `-0` for a zero's magnitude.)
+    let el = l.magnitude_bits().shr(23);
     let el = F::U::sel(el.lt(F::U::c(67)), F::U::c(67), el);
     let ulp = (el - F::U::c(52)).shl(23).as_float();
     let per_ulp = (F::U::c(306) - el).shl(23).as_float();
@@ -278,7 +285,7 @@ fn reciprocal<F: Float>(a: Limbs<F::U, 4>) -> Limbs<F::U, 4> {
 /// or zero) of sign `negative`, `s·2^57` in `recip`, as a float.
 #[inline(always)]
 fn times_center<F: Float>(x: F, negative: F::B, recip: Limbs<F::U, 4>, c: u32) -> F {
-    let bits = x.to_bits();
+    let bits = x.magnitude_bits();
     let exponent = bits.shr(23);
     let significand = (bits & F::U::c(0x7f_ffff)) + F::U::c(0x80_0000);
     // P = significand·S, below 2^80 and (for a normal x) at least 2^76.
